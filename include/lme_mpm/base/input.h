@@ -1,0 +1,48 @@
+#ifndef LME_MPM_BASE_INPUT_H
+#define LME_MPM_BASE_INPUT_H
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/point.h>
+
+#include <exception>
+#include <string>
+#include <vector>
+
+namespace lme_mpm
+{
+/// An input value that is well formed but not allowed; the message names the entry.
+DeclException2(ExcBadInput, std::string, std::string,
+               << "Invalid input for '" << arg1 << "': " << arg2);
+
+namespace input
+{
+/// "1, 2.5, 3" -> {1, 2.5, 3}; throws ExcBadInput naming @p entry on junk.
+std::vector<double> parse_doubles(const std::string &text, const std::string &entry);
+
+/// A point with exactly dim comma-separated coordinates.
+template <int dim>
+dealii::Point<dim> parse_point(const std::string &text, const std::string &entry);
+
+/// "name(a, b, c)" -> name and arguments (a bare "name" gives no arguments).
+struct Call
+{
+  std::string name;
+  std::vector<double> args;
+};
+Call parse_call(const std::string &text, const std::string &entry);
+
+/// Splits on a separator, trimming blanks and dropping empty pieces.
+std::vector<std::string> split(const std::string &text, char separator);
+
+std::string trim(const std::string &text);
+
+/// The 'Additional information' of a deal.II exception (or what()), one paragraph.
+std::string concise_message(const std::exception &e);
+
+/// Throws ExcBadInput unless lo < value < hi (open) or lo <= value <= hi.
+void require_range(double value, double lo, double hi, bool open,
+                   const std::string &entry);
+} // namespace input
+} // namespace lme_mpm
+
+#endif

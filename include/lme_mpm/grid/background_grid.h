@@ -1,0 +1,152 @@
+#ifndef LME_MPM_GRID_BACKGROUND_GRID_H
+#define LME_MPM_GRID_BACKGROUND_GRID_H
+
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/grid/tria.h>
+
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace lme_mpm
+{
+using namespace dealii;
+
+/**
+ * The fixed Cartesian background grid. deal.II owns the mesh (a
+ * subdivided_hyper_rectangle, uniform or graded, with coloured boundary ids) and the
+ * nodal DoF numbering used for grid output; the solver's hot loops use the
+ * lexicographic node index i + n_0 (j + n_1 k), so locating a particle is index
+ * arithmetic (uniform directions) or a binary search (graded ones), never a search
+ * through cells.
+ */
+template <int dim>
+class BackgroundGrid
+{
+public:
+  static void declare_parameters(ParameterHandler &prm);
+  /// Builds the grid from the "Grid" subsection.
+  void parse_parameters(ParameterHandler &prm);
+  /// Builds a grid from explicit step sizes per direction (graded if they differ).
+  void reinit(const Point<dim> &lower, const std::array<std::vector<double>, dim> &steps);
+
+  unsigned int n_nodes() const { return n_nodes_total; }
+  unsigned int n_cells() const { return n_cells_total; }
+  unsigned int n_cells_in(const unsigned int d) const { return coords[d].size() - 1; }
+  unsigned int n_nodes_in(const unsigned int d) const { return coords[d].size(); }
+  /// Stride of direction d in the node index.
+  unsigned int node_stride(const unsigned int d) const { return node_strides[d]; }
+  /// Nodes in one layer of the slowest direction (the colouring slabs' unit).
+  unsigned int nodes_per_layer() const { return node_strides[dim - 1]; }
+  unsigned int cells_per_layer() const { return cell_strides[dim - 1]; }
+
+  /// Node coordinates along direction d.
+  const std::vector<double> &coordinates(const unsigned int d) const { return coords[d]; }
+  double spacing(const unsigned int d, const unsigned int cell_i) const
+  {
+    return coords[d][cell_i + 1] - coords[d][cell_i];
+  }
+  double min_spacing() const { return h_min; }
+  bool is_uniform(const unsigned int d) const { return uniform_h[d] > 0; }
+
+  Point<dim> lower_corner() const;
+  Point<dim> upper_corner() const;
+
+  Point<dim> node_point(unsigned int node) const;
+  unsigned int node_index(const std::array<unsigned int, dim> &ijk) const
+  {
+    unsigned int n = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+      n += ijk[d] * node_strides[d];
+    return n;
+  }
+  unsigned int cell_index(const std::array<unsigned int, dim> &ijk) const
+  {
+    unsigned int c = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+      c += ijk[d] * cell_strides[d];
+    return c;
+  }
+  /// Layer (index in the slowest direction) of a node.
+  unsigned int node_layer(const unsigned int node) const
+  {
+    return node / node_strides[dim - 1];
+  }
+  unsigned int cell_layer(const unsigned int cell) const
+  {
+    return cell / cell_strides[dim - 1];
+  }
+
+  /**
+   * Cartesian index of the cell holding x along direction d; false if x lies outside
+   * the grid. A point on an interior cell face goes to the upper cell, one on the
+   * upper grid face to the last cell.
+   */
+  bool locate(const double x, const unsigned int d, unsigned int &i) const
+  {
+    const auto &c = coords[d];
+    if (!(x >= c.front() && x <= c.back()))
+      return false;
+    if (uniform_h[d] > 0)
+    {
+      const long k = static_cast<long>((x - c.front()) / uniform_h[d]);
+      i            = static_cast<unsigned int>(std::min<long>(k, c.size() - 2));
+      // Round-off at a cell face: correct by one.
+      if (x < c[i] && i > 0)
+        --i;
+      else if (i + 2 < c.size() && x >= c[i + 1])
+        ++i;
+      return true;
+    }
+    return locate_graded(x, d, i);
+  }
+  bool locate(const Point<dim> &x, std::array<unsigned int, dim> &ijk) const
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      if (!locate(x[d], d, ijk[d]))
+        return false;
+    return true;
+  }
+  bool inside(const Point<dim> &x) const
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      if (!(x[d] >= coords[d].front() && x[d] <= coords[d].back()))
+        return false;
+    return true;
+  }
+
+  /// Nodes on the grid faces with deal.II boundary id @p id (0: x-min, 1: x-max, ...).
+  std::vector<unsigned int> nodes_on_boundary(types::boundary_id id) const;
+  /// Nodes inside a closed box.
+  std::vector<unsigned int> nodes_in_box(const BoundingBox<dim> &box) const;
+
+  const Triangulation<dim> &triangulation() const { return tria; }
+  const DoFHandler<dim> &dof_handler() const { return dofs; }
+  /// DoF of component c of node n in dof_handler().
+  types::global_dof_index dof(const unsigned int node, const unsigned int c) const
+  {
+    return node_to_dof[node * dim + c];
+  }
+
+private:
+  bool locate_graded(double x, unsigned int d, unsigned int &i) const;
+
+  std::array<std::vector<double>, dim> coords;
+  std::array<double, dim> uniform_h{};
+  std::array<unsigned int, dim> node_strides{};
+  std::array<unsigned int, dim> cell_strides{};
+  unsigned int n_nodes_total = 0, n_cells_total = 0;
+  double h_min = 0;
+
+  Triangulation<dim> tria;
+  std::unique_ptr<FESystem<dim>> fe;
+  DoFHandler<dim> dofs;
+  std::vector<types::global_dof_index> node_to_dof;
+};
+} // namespace lme_mpm
+
+#endif

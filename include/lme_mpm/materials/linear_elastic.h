@@ -1,0 +1,48 @@
+#ifndef LME_MPM_MATERIALS_LINEAR_ELASTIC_H
+#define LME_MPM_MATERIALS_LINEAR_ELASTIC_H
+
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <lme_mpm/materials/material.h>
+
+namespace lme_mpm
+{
+namespace materials
+{
+/**
+ * Isotropic linear elasticity in small strain, sigma += C : d(epsilon). In 2D the
+ * in-plane stiffness is that of plane strain or of plane stress. Exposed in a
+ * header so that new materials (for example a damaged one) can reuse it.
+ */
+template <int dim>
+class LinearElastic : public Material<dim>
+{
+public:
+  static void declare_parameters(ParameterHandler &prm);
+  LinearElastic(ParameterHandler &prm, const MaterialContext &context);
+  LinearElastic(double density, double youngs_modulus, double poisson_ratio,
+                PlaneAssumption plane);
+
+  std::string name() const override { return "linear elastic"; }
+  double density() const override { return rho; }
+  double wave_speed() const override;
+  void update_stress(ParticleStore<dim> &particles, std::size_t begin, std::size_t end,
+                     unsigned int material_id) const override;
+  double strain_energy(const ParticleStore<dim> &particles, std::size_t begin,
+                       std::size_t end, unsigned int material_id) const override;
+
+  /// The in-plane stiffness tensor.
+  const SymmetricTensor<4, dim> &stiffness() const { return C; }
+  double lame_lambda() const { return lambda_eff; }
+  double shear_modulus() const { return mu; }
+
+private:
+  void setup(PlaneAssumption plane);
+
+  double rho = 0, E = 0, nu = 0, mu = 0, lambda_eff = 0;
+  SymmetricTensor<4, dim> C;
+};
+} // namespace materials
+} // namespace lme_mpm
+
+#endif

@@ -1,0 +1,84 @@
+#ifndef LME_MPM_MATERIALS_MATERIAL_H
+#define LME_MPM_MATERIALS_MATERIAL_H
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <lme_mpm/base/registry.h>
+#include <lme_mpm/particles/particle_store.h>
+
+#include <string>
+
+namespace lme_mpm
+{
+/// How a 2D model reads the third direction.
+enum class PlaneAssumption
+{
+  plane_strain,
+  plane_stress
+};
+
+/// What a material needs to know about the problem.
+struct MaterialContext
+{
+  unsigned int dim      = 2;
+  PlaneAssumption plane = PlaneAssumption::plane_strain;
+  /// Reference density (kg/m^3), an entry every material shares.
+  double density = 1.0;
+  /// "Material N/<model>", for error messages naming the entry.
+  std::string section = "Material";
+};
+
+/**
+ * A constitutive model. It advances the stress of a range of particles from their
+ * strain increment in one call (no virtual call per particle) and reports what the
+ * time step and the energy balance need.
+ */
+template <int dim>
+class Material
+{
+public:
+  virtual ~Material() = default;
+
+  virtual std::string name() const = 0;
+
+  /// Mass density of the reference configuration (kg/m^3).
+  virtual double density() const = 0;
+
+  /// Fastest elastic wave speed at the reference density (m/s), for the time step.
+  virtual double wave_speed() const = 0;
+
+  /**
+   * Updates `stress` (and any internal state) of the particles in [begin, end) that
+   * carry material id @p material_id, from `strain_increment`.
+   */
+  virtual void update_stress(ParticleStore<dim> &particles, std::size_t begin,
+                             std::size_t end, unsigned int material_id) const = 0;
+
+  /// Elastic energy (J) stored in the particles of [begin, end) with this material.
+  virtual double strain_energy(const ParticleStore<dim> &particles, std::size_t begin,
+                               std::size_t end, unsigned int material_id) const = 0;
+};
+
+template <int dim>
+using MaterialRegistry = Registry<Material<dim>, MaterialContext>;
+} // namespace lme_mpm
+
+/// Registers material class template CLASS under NAME for dim = 2 and 3.
+#define LME_MPM_REGISTER_MATERIAL(CLASS, NAME, DESCRIPTION)                              \
+  namespace                                                                              \
+  {                                                                                      \
+  template <int dim>                                                                     \
+  bool register_material_##CLASS()                                                       \
+  {                                                                                      \
+    return ::lme_mpm::MaterialRegistry<dim>::instance().add(                             \
+        NAME,                                                                            \
+        {DESCRIPTION, &CLASS<dim>::declare_parameters,                                   \
+         [](dealii::ParameterHandler &prm, const ::lme_mpm::MaterialContext &ctx) {      \
+           return std::unique_ptr<::lme_mpm::Material<dim>>(new CLASS<dim>(prm, ctx));   \
+         }});                                                                            \
+  }                                                                                      \
+  const bool registered_material_2d_##CLASS = register_material_##CLASS<2>();            \
+  const bool registered_material_3d_##CLASS = register_material_##CLASS<3>();            \
+  }
+
+#endif

@@ -1,0 +1,85 @@
+#ifndef LME_MPM_PARTICLES_PARTICLE_STORE_H
+#define LME_MPM_PARTICLES_PARTICLE_STORE_H
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace lme_mpm
+{
+using namespace dealii;
+
+/**
+ * The particles, one array per field (structure of arrays), kept sorted by the
+ * background cell that holds them so that the grid transfers sweep memory in order
+ * and the scatter can be split into independent slabs. Every field is listed once in
+ * for_each_field(), which is what resizing and reordering go through: a new field
+ * added there moves with its particle.
+ */
+template <int dim>
+class ParticleStore
+{
+public:
+  std::size_t size() const { return position.size(); }
+
+  /// Appends one particle with zeroed state; returns its index.
+  std::size_t add(const Point<dim> &x, double mass, double volume, unsigned int material,
+                  unsigned int body);
+
+  void resize(std::size_t n);
+
+  /**
+   * Stable counting sort by `cell` (which the caller has filled) over @p n_cells
+   * cells; fills cell_offsets() so that the particles of cell c are
+   * [cell_offsets[c], cell_offsets[c+1]). Skips the reorder when already sorted.
+   * Returns true if the order changed.
+   */
+  bool sort_by_cell(unsigned int n_cells);
+  const std::vector<std::size_t> &cell_offsets() const { return offsets; }
+
+  // Kinematics.
+  std::vector<Point<dim>> position;
+  std::vector<Point<dim>> reference_position; ///< position at t = 0
+  std::vector<Tensor<1, dim>> velocity;
+  std::vector<Tensor<1, dim>> acceleration;
+  // Mass and volume (volume includes the 2D thickness, so masses are the specimen's).
+  std::vector<double> mass;
+  std::vector<double> volume;
+  std::vector<double> initial_volume;
+  std::vector<double> density;
+  // Mechanics (small strain; stress is the undamaged one).
+  std::vector<SymmetricTensor<2, dim>> strain;
+  std::vector<SymmetricTensor<2, dim>> strain_increment;
+  std::vector<SymmetricTensor<2, dim>> stress;
+  // Identity.
+  std::vector<std::uint32_t> id;
+  std::vector<std::uint16_t> material_id;
+  std::vector<std::uint16_t> body_id;
+  std::vector<std::uint32_t> cell; ///< index of the background cell holding it
+  // Shape-function state: the LME Lagrange multiplier, a warm start for next step.
+  std::vector<Tensor<1, dim>> lme_lambda;
+  // Fracture state.
+  std::vector<double> damage;       ///< chi in [0, 1]
+  std::vector<double> onset_strain; ///< principal strain at softening onset
+  std::vector<std::uint8_t> failed; ///< 1 once fully failed (no stress)
+
+  /// Calls f(vector) for every per-particle field.
+  template <class F>
+  void for_each_field(F &&f)
+  {
+    f(position), f(reference_position), f(velocity), f(acceleration), f(mass), f(volume),
+        f(initial_volume), f(density), f(strain), f(strain_increment), f(stress), f(id),
+        f(material_id), f(body_id), f(cell), f(lme_lambda), f(damage), f(onset_strain),
+        f(failed);
+  }
+
+private:
+  std::vector<std::size_t> offsets;
+  std::vector<std::uint32_t> permutation;
+};
+} // namespace lme_mpm
+
+#endif

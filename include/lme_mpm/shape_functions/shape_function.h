@@ -1,0 +1,111 @@
+#ifndef LME_MPM_SHAPE_FUNCTIONS_SHAPE_FUNCTION_H
+#define LME_MPM_SHAPE_FUNCTIONS_SHAPE_FUNCTION_H
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
+
+#include <lme_mpm/base/registry.h>
+#include <lme_mpm/grid/background_grid.h>
+#include <lme_mpm/particles/particle_store.h>
+
+#include <string>
+#include <vector>
+
+namespace lme_mpm
+{
+/**
+ * Particle-node coupling for one step, stored flat: particle p owns the slots
+ * [p * stride, p * stride + n_nodes[p]) of `nodes`, `N` and `grad_N`, with its nodes
+ * in increasing index order. Computed once per step and shared by every transfer.
+ */
+template <int dim>
+struct Connectivity
+{
+  unsigned int stride = 0;
+  std::vector<unsigned int> n_nodes;
+  std::vector<unsigned int> nodes;
+  std::vector<double> N;
+  std::vector<Tensor<1, dim>> grad_N;
+
+  void resize(const std::size_t n_particles, const unsigned int max_nodes)
+  {
+    stride = max_nodes;
+    n_nodes.resize(n_particles);
+    nodes.resize(n_particles * stride);
+    N.resize(n_particles * stride);
+    grad_N.resize(n_particles * stride);
+  }
+};
+
+/// What a shape function may need to know about the problem when it is built.
+template <int dim>
+struct ShapeFunctionContext
+{
+  const BackgroundGrid<dim> *grid = nullptr;
+  double thickness                = 1.0; ///< 2D out-of-plane thickness
+};
+
+/// A particle the shape functions cannot be evaluated at; the run stops.
+DeclException4(ExcShapeFunctionFailure, std::string, unsigned int, std::string,
+               std::string, << arg1 << " shape functions failed at particle " << arg2
+                            << " (position " << arg3 << "): " << arg4);
+
+/**
+ * Interface of a family of shape functions (linear, uGIMP, cubic B-spline, LME).
+ * compute() fills the connectivity of a range of particles in one call, so the hot
+ * loop makes no virtual call per particle; it may read and update per-particle
+ * state kept in the store (the LME multiplier).
+ */
+template <int dim>
+class ShapeFunction
+{
+public:
+  virtual ~ShapeFunction() = default;
+
+  virtual std::string name() const = 0;
+
+  /// Upper bound of nodes coupled to one particle on this grid.
+  virtual unsigned int max_nodes_per_particle() const = 0;
+
+  /**
+   * Fills rows [begin, end) of @p conn for the particles' current positions. Called
+   * concurrently on disjoint ranges. Throws ExcShapeFunctionFailure on a particle
+   * outside the region where the functions are defined or a failed solve.
+   */
+  virtual void compute(ParticleStore<dim> &particles, std::size_t begin, std::size_t end,
+                       Connectivity<dim> &conn) const = 0;
+
+  /// Counters reported in summary.json (for example Newton iterations).
+  virtual std::vector<std::pair<std::string, double>> statistics() const { return {}; }
+};
+
+template <int dim>
+using ShapeFunctionRegistry = Registry<ShapeFunction<dim>, ShapeFunctionContext<dim>>;
+} // namespace lme_mpm
+
+/**
+ * Registers shape-function class template CLASS (templated on dim, constructed from
+ * (ParameterHandler &, const ShapeFunctionContext<dim> &), with a static
+ * declare_parameters(ParameterHandler &)) under NAME for dim = 2 and 3. Its entries
+ * are declared directly in the "Shape functions" subsection.
+ */
+#define LME_MPM_REGISTER_SHAPE_FUNCTION(CLASS, NAME, DESCRIPTION)                        \
+  namespace                                                                              \
+  {                                                                                      \
+  template <int dim>                                                                     \
+  bool register_shape_function_##CLASS()                                                 \
+  {                                                                                      \
+    return ::lme_mpm::ShapeFunctionRegistry<dim>::instance().add(                        \
+        NAME, {DESCRIPTION, &CLASS<dim>::declare_parameters,                             \
+               [](dealii::ParameterHandler &prm,                                         \
+                  const ::lme_mpm::ShapeFunctionContext<dim> &ctx) {                     \
+                 return std::unique_ptr<::lme_mpm::ShapeFunction<dim>>(                  \
+                     new CLASS<dim>(prm, ctx));                                          \
+               },                                                                        \
+               false});                                                                  \
+  }                                                                                      \
+  const bool registered_2d_##CLASS = register_shape_function_##CLASS<2>();               \
+  const bool registered_3d_##CLASS = register_shape_function_##CLASS<3>();               \
+  }
+
+#endif

@@ -1,0 +1,156 @@
+#ifndef LME_MPM_SOLVER_SIMULATION_H
+#define LME_MPM_SOLVER_SIMULATION_H
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/parsed_function.h>
+#include <deal.II/base/timer.h>
+
+#include <lme_mpm/boundary/node_constraints.h>
+#include <lme_mpm/grid/background_grid.h>
+#include <lme_mpm/materials/material.h>
+#include <lme_mpm/output/particle_output.h>
+#include <lme_mpm/particles/particle_store.h>
+#include <lme_mpm/shape_functions/shape_function.h>
+#include <lme_mpm/solver/explicit_newmark.h>
+
+#include <fstream>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lme_mpm
+{
+/// How many of each repeated subsection a parameter file declares (read first).
+struct ParameterCounts
+{
+  unsigned int dim         = 2;
+  unsigned int materials   = 1;
+  unsigned int bodies      = 1;
+  unsigned int constraints = 0;
+  unsigned int probes      = 0;
+
+  static void declare_parameters(ParameterHandler &prm);
+  void parse_parameters(ParameterHandler &prm);
+};
+
+/// A run that became unphysical or unstable; the message says where and why.
+DeclException5(ExcRunAborted, unsigned int, double, unsigned int, std::string,
+               std::string, << "Run stopped at step " << arg1 << ", time " << arg2
+                            << ": particle " << arg3 << " at " << arg4 << ": " << arg5);
+
+/// A point where history.csv reports the stress averaged over nearby particles.
+template <int dim>
+struct Probe
+{
+  std::string name;
+  Point<dim> point;
+  double radius;
+};
+
+/**
+ * One MPM run: reads a parameter file's entries, builds grid, particles, shape
+ * functions, materials and constraints, and advances them with the explicit Newmark
+ * predictor-corrector (doc/theory.md), writing VTU/PVD, history.csv and
+ * summary.json to the output directory.
+ */
+template <int dim>
+class Simulation
+{
+public:
+  static void declare_parameters(ParameterHandler &prm, const ParameterCounts &counts);
+
+  /// Parses and checks everything; throws naming the entry on bad input. Writes nothing.
+  Simulation(ParameterHandler &prm, const ParameterCounts &counts,
+             std::ostream &console = std::cout);
+
+  /// Runs to the end time. Returns the summary values (also in summary.json).
+  std::map<std::string, double> run();
+
+  /// Advances one time step (public for tests).
+  void step();
+
+  double time() const { return t; }
+  double time_step() const { return dt; }
+  const ParticleStore<dim> &particles() const { return store; }
+  const BackgroundGrid<dim> &grid() const { return background; }
+  /// Kinetic, strain, external work and total energy (J) now.
+  std::map<std::string, double> energies() const;
+
+private:
+  void setup_particles(ParameterHandler &prm, const ParameterCounts &counts);
+  void setup_time_step(ParameterHandler &prm);
+  void locate_and_sort();
+  void compute_connectivity();
+  template <class F>
+  void scatter(const F &f);
+  void write_output_row(bool final_row);
+  void abort_run(std::size_t p, const std::string &why) const;
+
+  // Configuration.
+  unsigned int verbosity;
+  std::string output_directory;
+  double end_time, output_interval, thickness;
+  ExplicitNewmark newmark;
+  Tensor<1, dim> body_force;
+  double dt = 0, t = 0;
+  unsigned int n_steps = 0, step_count = 0;
+  double mass_tolerance = 0;
+  bool write_particles;
+  unsigned int n_threads_used = 1;
+
+  BackgroundGrid<dim> background;
+  ParticleStore<dim> store;
+  std::unique_ptr<ShapeFunction<dim>> shape_function;
+  std::vector<std::unique_ptr<Material<dim>>> materials;
+  std::vector<std::unique_ptr<NodeConstraint<dim>>> constraints;
+  std::vector<Probe<dim>> probes;
+  Connectivity<dim> conn;
+  unsigned int slab_layers = 1;
+
+  // Nodal fields (lexicographic node index).
+  std::vector<double> nodal_mass;
+  std::vector<Tensor<1, dim>> nodal_momentum, nodal_mass_acceleration, nodal_rate,
+      nodal_force, nodal_acceleration;
+  // Per-particle displacement increment of the current step.
+  std::vector<Tensor<1, dim>> particle_increment;
+
+  // Energy accounting.
+  double external_work = 0, external_power = 0, initial_total_energy = 0;
+  double max_energy_drift = 0;
+
+  // Exact solution (verification scenes).
+  bool compare_exact = false;
+  std::unique_ptr<Functions::ParsedFunction<dim>> exact_displacement, exact_velocity;
+  double exact_displacement_norm = 0, exact_velocity_norm = 0;
+  double max_error_displacement = 0, max_error_velocity = 0;
+
+  // Output.
+  std::unique_ptr<ParticleOutput<dim>> output;
+  std::ofstream history;
+  double next_output_time = 0;
+  std::ostream &console_stream;
+  ConditionalOStream pcout;
+  std::map<std::string, double> results;
+};
+
+/**
+ * Reads a parameter file, applies "Subsection/Entry=value" overrides, builds the
+ * simulation of the declared dimension and runs it. Throws on bad input before
+ * anything is written.
+ */
+std::map<std::string, double>
+run_parameter_file(const std::string &file, const std::vector<std::string> &overrides,
+                   std::ostream &console = std::cout);
+
+/// Applies "A/B/Entry=value" overrides; with @p skip_unknown, unknown entries are
+/// ignored.
+void apply_overrides(ParameterHandler &prm, const std::vector<std::string> &overrides,
+                     bool skip_unknown);
+
+/// Writes the documented default parameter file of a 2D run.
+void print_default_parameters(std::ostream &out);
+} // namespace lme_mpm
+
+#endif

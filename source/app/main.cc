@@ -1,0 +1,90 @@
+// lme-mpm: runs a scene described by a deal.II parameter file.
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
+
+#include <boost/program_options.hpp>
+
+#include <lme_mpm/base/input.h>
+#include <lme_mpm/solver/simulation.h>
+
+#include <iostream>
+
+namespace po = boost::program_options;
+
+int main(int argc, char **argv)
+{
+  try
+  {
+    po::options_description options("Usage: lme-mpm FILE.prm [options]\nOptions");
+    options.add_options()("help,h", "print this help")(
+        "set,s", po::value<std::vector<std::string>>()->composing(),
+        "override an entry: --set \"Subsection/Entry=value\" (repeatable)")(
+        "threads,t", po::value<unsigned int>(), "worker threads (default: all cores)")(
+        "print-parameters", "write the documented default parameter "
+                            "file to standard output");
+    po::options_description hidden;
+    hidden.add_options()("file", po::value<std::string>(), "parameter file");
+    po::options_description all;
+    all.add(options).add(hidden);
+    po::positional_options_description positional;
+    positional.add("file", 1);
+
+    po::variables_map vm;
+    try
+    {
+      po::store(
+          po::command_line_parser(argc, argv).options(all).positional(positional).run(),
+          vm);
+      po::notify(vm);
+    }
+    catch (const po::error &e)
+    {
+      std::cerr << "lme-mpm: " << e.what() << "\n" << options << std::endl;
+      return 2;
+    }
+    if (vm.count("help"))
+    {
+      std::cout << options << std::endl;
+      return 0;
+    }
+    if (vm.count("print-parameters"))
+    {
+      lme_mpm::print_default_parameters(std::cout);
+      return 0;
+    }
+    if (!vm.count("file"))
+    {
+      std::cerr << "lme-mpm: no parameter file given\n" << options << std::endl;
+      return 2;
+    }
+
+    // One MPI rank for now; TBB keeps all cores unless --threads caps it.
+    dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv,
+                                                 dealii::numbers::invalid_unsigned_int);
+    if (vm.count("threads"))
+    {
+      const unsigned int n = vm["threads"].as<unsigned int>();
+      if (n == 0)
+      {
+        std::cerr << "lme-mpm: --threads must be at least 1" << std::endl;
+        return 2;
+      }
+      dealii::MultithreadInfo::set_thread_limit(n);
+    }
+    const std::vector<std::string> overrides =
+        vm.count("set") ? vm["set"].as<std::vector<std::string>>()
+                        : std::vector<std::string>();
+    lme_mpm::run_parameter_file(vm["file"].as<std::string>(), overrides, std::cout);
+  }
+  catch (const std::exception &e)
+  {
+    std::cerr << "lme-mpm: error: " << lme_mpm::input::concise_message(e) << std::endl;
+    return 1;
+  }
+  catch (...)
+  {
+    std::cerr << "lme-mpm: unknown error" << std::endl;
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,127 @@
+#include <lme_mpm/base/input.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace lme_mpm
+{
+namespace input
+{
+std::string trim(const std::string &text)
+{
+  const auto b = text.find_first_not_of(" \t\n\r");
+  if (b == std::string::npos)
+    return "";
+  const auto e = text.find_last_not_of(" \t\n\r");
+  return text.substr(b, e - b + 1);
+}
+
+std::string concise_message(const std::exception &e)
+{
+  std::string text      = e.what();
+  const std::string key = "Additional information:";
+  const auto pos        = text.find(key);
+  if (pos != std::string::npos)
+    text = text.substr(pos + key.size());
+  const auto dashes = text.find("\n----");
+  if (dashes != std::string::npos)
+    text = text.substr(0, dashes);
+  const auto stack = text.find("Stacktrace:");
+  if (stack != std::string::npos)
+    text = text.substr(0, stack);
+  // Fold the indented lines into one paragraph.
+  std::string out;
+  bool space = false;
+  for (const char c : text)
+    if (c == '\n' || c == ' ' || c == '\t')
+      space = !out.empty();
+    else
+    {
+      if (space)
+        out += ' ';
+      out += c;
+      space = false;
+    }
+  return out;
+}
+
+std::vector<std::string> split(const std::string &text, const char separator)
+{
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  std::string piece;
+  while (std::getline(ss, piece, separator))
+  {
+    piece = trim(piece);
+    if (!piece.empty())
+      out.push_back(piece);
+  }
+  return out;
+}
+
+std::vector<double> parse_doubles(const std::string &text, const std::string &entry)
+{
+  std::vector<double> values;
+  for (const auto &piece : split(text, ','))
+  {
+    std::size_t used = 0;
+    double v         = 0;
+    try
+    {
+      v = std::stod(piece, &used);
+    }
+    catch (...)
+    {
+      used = 0;
+    }
+    AssertThrow(used == piece.size() && std::isfinite(v),
+                ExcBadInput(entry, "'" + piece + "' is not a finite number"));
+    values.push_back(v);
+  }
+  return values;
+}
+
+template <int dim>
+dealii::Point<dim> parse_point(const std::string &text, const std::string &entry)
+{
+  const auto v = parse_doubles(text, entry);
+  AssertThrow(v.size() == dim,
+              ExcBadInput(entry, "expected " + std::to_string(dim) +
+                                     " comma-separated coordinates, got '" + text + "'"));
+  dealii::Point<dim> p;
+  for (unsigned int d = 0; d < dim; ++d)
+    p[d] = v[d];
+  return p;
+}
+
+Call parse_call(const std::string &text, const std::string &entry)
+{
+  const std::string t = trim(text);
+  const auto open     = t.find('(');
+  Call call;
+  if (open == std::string::npos)
+  {
+    call.name = t;
+    return call;
+  }
+  AssertThrow(t.back() == ')',
+              ExcBadInput(entry, "expected name(arguments), got '" + text + "'"));
+  call.name = trim(t.substr(0, open));
+  call.args = parse_doubles(t.substr(open + 1, t.size() - open - 2), entry);
+  return call;
+}
+
+void require_range(const double value, const double lo, const double hi, const bool open,
+                   const std::string &entry)
+{
+  const bool ok = open ? (value > lo && value < hi) : (value >= lo && value <= hi);
+  std::ostringstream msg;
+  msg << "value " << value << " is outside the allowed range " << (open ? "(" : "[") << lo
+      << ", " << hi << (open ? ")" : "]");
+  AssertThrow(ok, ExcBadInput(entry, msg.str()));
+}
+
+template dealii::Point<2> parse_point<2>(const std::string &, const std::string &);
+template dealii::Point<3> parse_point<3>(const std::string &, const std::string &);
+} // namespace input
+} // namespace lme_mpm

@@ -1,0 +1,207 @@
+#include <lme_mpm/base/input.h>
+#include <lme_mpm/geometry/geometry.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace lme_mpm
+{
+namespace
+{
+template <int dim>
+Point<dim> point_from(const std::vector<double> &a, const unsigned int first)
+{
+  Point<dim> p;
+  for (unsigned int d = 0; d < dim; ++d)
+    p[d] = a[first + d];
+  return p;
+}
+
+/// Axis-aligned box: lower corner, upper corner.
+template <int dim>
+class Box : public Geometry<dim>
+{
+public:
+  explicit Box(const std::vector<double> &a)
+      : lo(point_from<dim>(a, 0)), hi(point_from<dim>(a, dim))
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      if (!(hi[d] > lo[d]))
+        throw std::invalid_argument("rectangle: upper corner must exceed lower");
+  }
+  bool inside(const Point<dim> &x) const override
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      if (x[d] < lo[d] || x[d] > hi[d])
+        return false;
+    return true;
+  }
+  BoundingBox<dim> bounding_box() const override { return BoundingBox<dim>({lo, hi}); }
+
+private:
+  Point<dim> lo, hi;
+};
+
+/// Disc (2D) or ball (3D): centre, radius.
+template <int dim>
+class Ball : public Geometry<dim>
+{
+public:
+  explicit Ball(const std::vector<double> &a) : c(point_from<dim>(a, 0)), r(a[dim])
+  {
+    if (!(r > 0))
+      throw std::invalid_argument("disc: the radius must be positive");
+  }
+  bool inside(const Point<dim> &x) const override { return x.distance(c) <= r; }
+  BoundingBox<dim> bounding_box() const override
+  {
+    Point<dim> lo = c, hi = c;
+    for (unsigned int d = 0; d < dim; ++d)
+      lo[d] -= r, hi[d] += r;
+    return BoundingBox<dim>({lo, hi});
+  }
+
+protected:
+  Point<dim> c;
+  double r;
+};
+
+/**
+ * Half disc: centre of the flat edge, radius, and the direction (degrees from +x in
+ * the x-y plane) of the curved side. In 3D a half cylinder along z, unbounded in z.
+ */
+template <int dim>
+class HalfDisc : public Geometry<dim>
+{
+public:
+  explicit HalfDisc(const std::vector<double> &a)
+      : cx(a[0]), cy(a[1]), r(a[2]), nx(std::cos(a[3] * M_PI / 180)),
+        ny(std::sin(a[3] * M_PI / 180))
+  {
+    if (!(r > 0))
+      throw std::invalid_argument("half_disc: the radius must be positive");
+  }
+  bool inside(const Point<dim> &x) const override
+  {
+    const double dx = x[0] - cx, dy = x[1] - cy;
+    return dx * dx + dy * dy <= r * r && dx * nx + dy * ny >= 0;
+  }
+  BoundingBox<dim> bounding_box() const override
+  {
+    Point<dim> lo, hi;
+    lo[0] = cx - r, hi[0] = cx + r, lo[1] = cy - r, hi[1] = cy + r;
+    for (unsigned int d = 2; d < dim; ++d)
+      lo[d] = -1e300, hi[d] = 1e300;
+    return BoundingBox<dim>({lo, hi});
+  }
+
+private:
+  double cx, cy, r, nx, ny;
+};
+
+/**
+ * Slot (a notch): a rectangle of given length and width that starts at a point and
+ * runs in a direction (degrees from +x). Unbounded in z in 3D.
+ */
+template <int dim>
+class Slot : public Geometry<dim>
+{
+public:
+  explicit Slot(const std::vector<double> &a)
+      : x0(a[0]), y0(a[1]), length(a[2]), width(a[3]), tx(std::cos(a[4] * M_PI / 180)),
+        ty(std::sin(a[4] * M_PI / 180))
+  {
+    if (!(length > 0 && width > 0))
+      throw std::invalid_argument("slot: length and width must be positive");
+  }
+  bool inside(const Point<dim> &x) const override
+  {
+    const double dx = x[0] - x0, dy = x[1] - y0;
+    const double s = dx * tx + dy * ty, n = -dx * ty + dy * tx;
+    return s >= 0 && s <= length && std::abs(n) <= 0.5 * width;
+  }
+  BoundingBox<dim> bounding_box() const override
+  {
+    Point<dim> lo, hi;
+    const double ext = length + width;
+    lo[0] = x0 - ext, hi[0] = x0 + ext, lo[1] = y0 - ext, hi[1] = y0 + ext;
+    for (unsigned int d = 2; d < dim; ++d)
+      lo[d] = -1e300, hi[d] = 1e300;
+    return BoundingBox<dim>({lo, hi});
+  }
+
+private:
+  double x0, y0, length, width, tx, ty;
+};
+
+template <int dim, class Shape>
+typename GeometryRegistry<dim>::Create make()
+{
+  return [](const std::vector<double> &a) { return std::make_unique<Shape>(a); };
+}
+} // namespace
+
+template <int dim>
+GeometryRegistry<dim> &GeometryRegistry<dim>::instance()
+{
+  static GeometryRegistry<dim> registry;
+  static const bool built_in = []
+  {
+    registry.add("rectangle", {2 * dim,
+                               dim == 2 ? "rectangle(x0, y0, x1, y1)"
+                                        : "rectangle(x0, y0, z0, x1, y1, z1)",
+                               make<dim, Box<dim>>()});
+    registry.add("disc",
+                 {dim + 1, dim == 2 ? "disc(cx, cy, r)" : "disc(cx, cy, cz, r): a ball",
+                  make<dim, Ball<dim>>()});
+    registry.add("half_disc",
+                 {4,
+                  "half_disc(cx, cy, r, angle): flat edge through (cx, cy), curved "
+                  "side towards angle (degrees from +x)",
+                  make<dim, HalfDisc<dim>>()});
+    registry.add("slot", {5,
+                          "slot(x, y, length, width, angle): a notch from (x, y) "
+                          "towards angle (degrees from +x)",
+                          make<dim, Slot<dim>>()});
+    return true;
+  }();
+  (void)built_in;
+  return registry;
+}
+
+template <int dim>
+std::unique_ptr<Geometry<dim>>
+GeometryRegistry<dim>::create(const std::string &text, const std::string &entry) const
+{
+  const input::Call call = input::parse_call(text, entry);
+  const auto it          = entries.find(call.name);
+  AssertThrow(
+      it != entries.end(),
+      ExcBadInput(entry, "unknown shape '" + call.name + "'; known: " + documentation()));
+  AssertThrow(call.args.size() == it->second.n_arguments,
+              ExcBadInput(entry, "'" + call.name + "' takes " +
+                                     std::to_string(it->second.n_arguments) +
+                                     " numbers: " + it->second.description));
+  try
+  {
+    return it->second.create(call.args);
+  }
+  catch (const std::invalid_argument &e)
+  {
+    AssertThrow(false, ExcBadInput(entry, std::string(e.what()) + " in '" + text + "'"));
+  }
+  return nullptr;
+}
+
+template <int dim>
+std::string GeometryRegistry<dim>::documentation() const
+{
+  std::string s;
+  for (const auto &e : entries)
+    s += (s.empty() ? "" : "; ") + e.second.description;
+  return s;
+}
+
+template class GeometryRegistry<2>;
+template class GeometryRegistry<3>;
+} // namespace lme_mpm

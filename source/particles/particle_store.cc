@@ -1,0 +1,67 @@
+#include <lme_mpm/particles/particle_store.h>
+
+#include <algorithm>
+
+namespace lme_mpm
+{
+template <int dim>
+void ParticleStore<dim>::resize(const std::size_t n)
+{
+  for_each_field([n](auto &v) { v.resize(n); });
+}
+
+template <int dim>
+std::size_t ParticleStore<dim>::add(const Point<dim> &x, const double m, const double v,
+                                    const unsigned int material, const unsigned int body)
+{
+  const std::size_t p = size();
+  resize(p + 1);
+  position[p]           = x;
+  reference_position[p] = x;
+  mass[p]               = m;
+  volume[p]             = v;
+  initial_volume[p]     = v;
+  density[p]            = m / v;
+  id[p]                 = static_cast<std::uint32_t>(p);
+  material_id[p]        = static_cast<std::uint16_t>(material);
+  body_id[p]            = static_cast<std::uint16_t>(body);
+  return p;
+}
+
+template <int dim>
+bool ParticleStore<dim>::sort_by_cell(const unsigned int n_cells)
+{
+  const std::size_t n = size();
+  offsets.assign(n_cells + 1, 0);
+  bool sorted = true;
+  for (std::size_t p = 0; p < n; ++p)
+  {
+    ++offsets[cell[p] + 1];
+    if (p > 0 && cell[p] < cell[p - 1])
+      sorted = false;
+  }
+  for (unsigned int c = 0; c < n_cells; ++c)
+    offsets[c + 1] += offsets[c];
+  if (sorted)
+    return false;
+
+  permutation.resize(n);
+  std::vector<std::size_t> next(offsets.begin(), offsets.end() - 1);
+  for (std::size_t p = 0; p < n; ++p)
+    permutation[next[cell[p]]++] = static_cast<std::uint32_t>(p);
+
+  for_each_field(
+      [this, n](auto &field)
+      {
+        using V = std::decay_t<decltype(field)>;
+        V reordered(n);
+        for (std::size_t q = 0; q < n; ++q)
+          reordered[q] = field[permutation[q]];
+        field.swap(reordered);
+      });
+  return true;
+}
+
+template class ParticleStore<2>;
+template class ParticleStore<3>;
+} // namespace lme_mpm

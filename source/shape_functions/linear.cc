@@ -1,0 +1,76 @@
+#include <lme_mpm/shape_functions/tensor_product.h>
+
+#include <sstream>
+
+namespace lme_mpm
+{
+template <int dim>
+std::string point_to_string(const Point<dim> &p)
+{
+  std::ostringstream s;
+  s.precision(10);
+  s << "(";
+  for (unsigned int d = 0; d < dim; ++d)
+    s << (d ? ", " : "") << p[d];
+  s << ")";
+  return s.str();
+}
+template std::string point_to_string<2>(const Point<2> &);
+template std::string point_to_string<3>(const Point<3> &);
+
+namespace shape_functions
+{
+/**
+ * Standard MPM: the tensor-product Q1 hat functions of the background cell that
+ * holds the particle (2^dim nodes). Exact for linear fields, but gradients jump
+ * when a particle crosses a cell face (the cell-crossing error).
+ */
+template <int dim>
+class Linear : public ShapeFunction<dim>
+{
+public:
+  static void declare_parameters(ParameterHandler &) {}
+
+  Linear(ParameterHandler &, const ShapeFunctionContext<dim> &context)
+      : grid(*context.grid)
+  {
+  }
+
+  std::string name() const override { return "linear"; }
+  unsigned int max_nodes_per_particle() const override { return 1u << dim; }
+
+  void compute(ParticleStore<dim> &particles, const std::size_t begin,
+               const std::size_t end, Connectivity<dim> &conn) const override
+  {
+    for (std::size_t p = begin; p < end; ++p)
+    {
+      const Point<dim> &x = particles.position[p];
+      std::array<unsigned int, dim> i0, n;
+      std::array<std::array<double, 2>, dim> w, dw;
+      AssertThrow(grid.locate(x, i0),
+                  ExcShapeFunctionFailure("linear", particles.id[p], point_to_string(x),
+                                          "the particle is outside the grid"));
+      for (unsigned int d = 0; d < dim; ++d)
+      {
+        const double h  = grid.spacing(d, i0[d]);
+        const double xi = (x[d] - grid.coordinates(d)[i0[d]]) / h;
+        w[d]            = {{1 - xi, xi}};
+        dw[d]           = {{-1 / h, 1 / h}};
+        n[d]            = 2;
+      }
+      conn.n_nodes[p] = tensor_product_row<dim, 2>(
+          grid, i0, n, w, dw, &conn.nodes[p * conn.stride], &conn.N[p * conn.stride],
+          &conn.grad_N[p * conn.stride]);
+    }
+  }
+
+private:
+  const BackgroundGrid<dim> &grid;
+};
+} // namespace shape_functions
+} // namespace lme_mpm
+
+using lme_mpm::shape_functions::Linear;
+LME_MPM_REGISTER_SHAPE_FUNCTION(Linear, "linear",
+                                "tensor-product Q1 hat functions of the cell that holds "
+                                "the particle (standard MPM).")

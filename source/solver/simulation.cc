@@ -1,0 +1,1057 @@
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <lme_mpm/base/input.h>
+#include <lme_mpm/base/parallel.h>
+#include <lme_mpm/geometry/geometry.h>
+#include <lme_mpm/shape_functions/tensor_product.h>
+#include <lme_mpm/solver/simulation.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+namespace lme_mpm
+{
+namespace
+{
+const char *axis[3] = {"x", "y", "z"};
+
+std::string subsection_name(const std::string &kind, const unsigned int i)
+{
+  return kind + " " + std::to_string(i + 1);
+}
+
+/// Parses a ParsedFunction in subsection @p section; a bad expression names its entry.
+template <int dim>
+void parse_function(ParameterHandler &prm, const std::string &section,
+                    Functions::ParsedFunction<dim> &f, const std::string &entry)
+{
+  prm.enter_subsection(section);
+  try
+  {
+    f.parse_parameters(prm);
+    // muparser compiles on first use: evaluate once so a syntax error shows here.
+    for (unsigned int c = 0; c < dim; ++c)
+      (void)f.value(Point<dim>(), c);
+  }
+  catch (...)
+  {
+    prm.leave_subsection();
+    AssertThrow(false,
+                ExcBadInput(entry + "/Function expression",
+                            "not a valid expression of the coordinates and t "
+                            "with " +
+                                std::to_string(dim) + " components separated by ';'"));
+  }
+  prm.leave_subsection();
+}
+} // namespace
+
+// ------------------------------------------------------------------ parameters
+
+void ParameterCounts::declare_parameters(ParameterHandler &prm)
+{
+  prm.enter_subsection("Problem");
+  prm.declare_entry("Dimension", "2", Patterns::Integer(2, 3),
+                    "Space dimension, 2 or 3.");
+  prm.declare_entry("Number of materials", "1", Patterns::Integer(1, 64),
+                    "How many 'Material N' subsections follow.");
+  prm.declare_entry("Number of bodies", "1", Patterns::Integer(1, 64),
+                    "How many 'Body N' subsections follow.");
+  prm.leave_subsection();
+  prm.enter_subsection("Boundary conditions");
+  prm.declare_entry("Number of constraints", "0", Patterns::Integer(0, 64),
+                    "How many 'Constraint N' subsections follow.");
+  prm.leave_subsection();
+  prm.enter_subsection("Output");
+  prm.declare_entry("Number of probes", "0", Patterns::Integer(0, 64),
+                    "How many 'Probe N' subsections follow.");
+  prm.leave_subsection();
+}
+
+void ParameterCounts::parse_parameters(ParameterHandler &prm)
+{
+  prm.enter_subsection("Problem");
+  dim       = prm.get_integer("Dimension");
+  materials = prm.get_integer("Number of materials");
+  bodies    = prm.get_integer("Number of bodies");
+  prm.leave_subsection();
+  prm.enter_subsection("Boundary conditions");
+  constraints = prm.get_integer("Number of constraints");
+  prm.leave_subsection();
+  prm.enter_subsection("Output");
+  probes = prm.get_integer("Number of probes");
+  prm.leave_subsection();
+}
+
+template <int dim>
+void Simulation<dim>::declare_parameters(ParameterHandler &prm,
+                                         const ParameterCounts &counts)
+{
+  ParameterCounts::declare_parameters(prm);
+  prm.enter_subsection("Problem");
+  prm.declare_entry("Thickness", "1", Patterns::Double(0),
+                    "Out-of-plane thickness of a 2D specimen (m); masses, forces and "
+                    "energies are those of the specimen. Ignored in 3D.");
+  prm.declare_entry("Plane assumption", "plane strain",
+                    Patterns::Selection("plane strain|plane stress"),
+                    "How a 2D model treats the out-of-plane direction.");
+  prm.declare_entry("Body force", "0, 0, 0", Patterns::Anything(),
+                    "Body force per unit mass (m/s^2), dim components (extra ones "
+                    "ignored), for example '0, -9.81'.");
+  prm.leave_subsection();
+
+  BackgroundGrid<dim>::declare_parameters(prm);
+
+  prm.enter_subsection("Time");
+  prm.declare_entry("End time", "1", Patterns::Double(0), "Simulated time (s), > 0.");
+  prm.declare_entry("CFL", "0.3", Patterns::Double(0),
+                    "Time step as a fraction of h_min / c_P (c_P the fastest P-wave "
+                    "speed). Used when 'Time step' is 0.");
+  prm.declare_entry("Time step", "0", Patterns::Double(0),
+                    "Fixed time step (s); 0 takes it from the CFL number.");
+  prm.declare_entry("Maximum CFL", "1", Patterns::Double(0, 2),
+                    "Largest accepted ratio dt c_P / h_min; a larger CFL or fixed time "
+                    "step is rejected (explicit schemes are unstable beyond about 1).");
+  prm.declare_entry("Newmark gamma", "0.5", Patterns::Double(0.5, 1),
+                    "Newmark gamma in [0.5, 1]: 0.5 conserves energy (second order), "
+                    "larger values damp high frequencies (first order).");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Shape functions");
+  prm.declare_entry("Type", "linear",
+                    Patterns::Selection(ShapeFunctionRegistry<dim>::instance().pattern()),
+                    "Particle-node coupling. " +
+                        ShapeFunctionRegistry<dim>::instance().documentation());
+  ShapeFunctionRegistry<dim>::instance().declare_all(prm);
+  prm.leave_subsection();
+
+  for (unsigned int m = 0; m < counts.materials; ++m)
+  {
+    prm.enter_subsection(subsection_name("Material", m));
+    prm.declare_entry("Model", "linear elastic",
+                      Patterns::Selection(MaterialRegistry<dim>::instance().pattern()),
+                      "Constitutive model. " +
+                          MaterialRegistry<dim>::instance().documentation());
+    prm.declare_entry("Density", "1000", Patterns::Double(0), "Density (kg/m^3), > 0.");
+    MaterialRegistry<dim>::instance().declare_all(prm);
+    prm.leave_subsection();
+  }
+
+  for (unsigned int b = 0; b < counts.bodies; ++b)
+  {
+    prm.enter_subsection(subsection_name("Body", b));
+    prm.declare_entry("Material", "1", Patterns::Integer(1),
+                      "Number N of the 'Material N' the body is made of.");
+    prm.declare_entry(
+        "Shape", dim == 2 ? "rectangle(0, 0, 1, 1)" : "rectangle(0, 0, 0, 1, 1, 1)",
+        Patterns::Anything(),
+        "Region the body fills: " + GeometryRegistry<dim>::instance().documentation());
+    prm.declare_entry("Holes", "", Patterns::Anything(),
+                      "Regions removed from the shape (notches, holes), separated by "
+                      "';', in the same form as 'Shape'.");
+    prm.declare_entry("Particles per cell direction", "2", Patterns::Integer(1, 8),
+                      "Particles at the Gauss points of each background cell, this "
+                      "many per direction.");
+    prm.enter_subsection("Initial velocity");
+    Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
+    prm.leave_subsection();
+    prm.leave_subsection();
+  }
+
+  prm.enter_subsection("Boundary conditions");
+  for (unsigned int c = 0; c < counts.constraints; ++c)
+  {
+    prm.enter_subsection(subsection_name("Constraint", c));
+    NodeConstraint<dim>::declare_parameters(prm);
+    prm.leave_subsection();
+  }
+  prm.leave_subsection();
+
+  prm.enter_subsection("Output");
+  prm.declare_entry("Directory", "output", Patterns::Anything(),
+                    "Directory for VTU/PVD files, history.csv and summary.json.");
+  prm.declare_entry("Output interval", "0", Patterns::Double(0),
+                    "Simulated time between output rows and files (s); 0: 20 per run.");
+  prm.declare_entry("Write particle files", "true", Patterns::Bool(),
+                    "Write particle VTU files (history.csv and summary.json always).");
+  prm.declare_entry("Write grid files", "false", Patterns::Bool(),
+                    "Also write the background grid with nodal velocity and mass.");
+  prm.declare_entry("Verbosity", "1", Patterns::Integer(0, 2),
+                    "0: errors only; 1: progress and timing; 2: more.");
+  for (unsigned int p = 0; p < counts.probes; ++p)
+  {
+    prm.enter_subsection(subsection_name("Probe", p));
+    prm.declare_entry("Name", "probe", Patterns::Anything(),
+                      "history.csv reports probe_<name>_sxx, ... .");
+    prm.declare_entry("Point", dim == 2 ? "0, 0" : "0, 0, 0", Patterns::Anything(),
+                      "Centre of the probe (m).");
+    prm.declare_entry("Radius", "0.01", Patterns::Double(0),
+                      "Particles within this distance are averaged (m), > 0.");
+    prm.leave_subsection();
+  }
+  prm.leave_subsection();
+
+  prm.enter_subsection("Verification");
+  prm.declare_entry("Compare with exact solution", "false", Patterns::Bool(),
+                    "Report error_displacement_l2 and error_velocity_l2 against the "
+                    "exact fields below, functions of the reference position and t.");
+  for (const char *s : {"Exact displacement", "Exact velocity"})
+  {
+    prm.enter_subsection(s);
+    Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
+    prm.leave_subsection();
+  }
+  prm.leave_subsection();
+}
+
+// ------------------------------------------------------------------ setup
+
+template <int dim>
+Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts,
+                            std::ostream &console)
+    : console_stream(console), pcout(console, false)
+{
+  prm.enter_subsection("Output");
+  verbosity             = prm.get_integer("Verbosity");
+  output_directory      = prm.get("Directory");
+  output_interval       = prm.get_double("Output interval");
+  write_particles       = prm.get_bool("Write particle files");
+  const bool grid_files = prm.get_bool("Write grid files");
+  prm.leave_subsection();
+  pcout.set_condition(verbosity > 0);
+  AssertThrow(!input::trim(output_directory).empty(),
+              ExcBadInput("Output/Directory", "must not be empty"));
+
+  prm.enter_subsection("Problem");
+  thickness = dim == 2 ? prm.get_double("Thickness") : 1.0;
+  input::require_range(thickness, 0, 1e300, true, "Problem/Thickness");
+  MaterialContext material_context;
+  material_context.dim   = dim;
+  material_context.plane = prm.get("Plane assumption") == "plane stress"
+                               ? PlaneAssumption::plane_stress
+                               : PlaneAssumption::plane_strain;
+  {
+    const auto g = input::parse_doubles(prm.get("Body force"), "Problem/Body force");
+    AssertThrow(g.size() >= dim,
+                ExcBadInput("Problem/Body force",
+                            "needs at least " + std::to_string(dim) + " components"));
+    for (unsigned int d = 0; d < dim; ++d)
+      body_force[d] = g[d];
+  }
+  prm.leave_subsection();
+
+  background.parse_parameters(prm);
+
+  for (unsigned int m = 0; m < counts.materials; ++m)
+  {
+    const std::string section = subsection_name("Material", m);
+    prm.enter_subsection(section);
+    material_context.density = prm.get_double("Density");
+    material_context.section = section + "/" + prm.get("Model");
+    input::require_range(material_context.density, 0, 1e300, true, section + "/Density");
+    materials.push_back(MaterialRegistry<dim>::instance().create(prm.get("Model"), prm,
+                                                                 material_context));
+    prm.leave_subsection();
+  }
+
+  prm.enter_subsection("Time");
+  end_time = prm.get_double("End time");
+  input::require_range(end_time, 0, 1e300, true, "Time/End time");
+  newmark.gamma = prm.get_double("Newmark gamma");
+  prm.leave_subsection();
+  setup_time_step(prm);
+
+  setup_particles(prm, counts);
+
+  prm.enter_subsection("Shape functions");
+  ShapeFunctionContext<dim> sf_context;
+  sf_context.grid      = &background;
+  sf_context.thickness = thickness;
+  shape_function =
+      ShapeFunctionRegistry<dim>::instance().create(prm.get("Type"), prm, sf_context);
+  prm.leave_subsection();
+
+  prm.enter_subsection("Boundary conditions");
+  for (unsigned int c = 0; c < counts.constraints; ++c)
+  {
+    const std::string section = subsection_name("Constraint", c);
+    prm.enter_subsection(section);
+    constraints.push_back(std::make_unique<NodeConstraint<dim>>());
+    constraints.back()->parse_parameters(prm, background,
+                                         "Boundary conditions/" + section);
+    prm.leave_subsection();
+    for (unsigned int o = 0; o + 1 < constraints.size(); ++o)
+      AssertThrow(constraints[o]->name() != constraints.back()->name(),
+                  ExcBadInput("Boundary conditions/" + section + "/Name",
+                              "'" + constraints.back()->name() + "' is used twice"));
+  }
+  prm.leave_subsection();
+
+  prm.enter_subsection("Output");
+  for (unsigned int p = 0; p < counts.probes; ++p)
+  {
+    const std::string section = subsection_name("Probe", p);
+    prm.enter_subsection(section);
+    Probe<dim> probe;
+    probe.name = input::trim(prm.get("Name"));
+    probe.point =
+        input::parse_point<dim>(prm.get("Point"), "Output/" + section + "/Point");
+    probe.radius = prm.get_double("Radius");
+    input::require_range(probe.radius, 0, 1e300, true, "Output/" + section + "/Radius");
+    probes.push_back(probe);
+    prm.leave_subsection();
+  }
+  prm.leave_subsection();
+
+  prm.enter_subsection("Verification");
+  compare_exact = prm.get_bool("Compare with exact solution");
+  if (compare_exact)
+  {
+    exact_displacement = std::make_unique<Functions::ParsedFunction<dim>>(dim);
+    exact_velocity     = std::make_unique<Functions::ParsedFunction<dim>>(dim);
+    parse_function(prm, "Exact displacement", *exact_displacement,
+                   "Verification/Exact displacement");
+    parse_function(prm, "Exact velocity", *exact_velocity, "Verification/Exact velocity");
+  }
+  prm.leave_subsection();
+
+  if (output_interval <= 0)
+    output_interval = end_time / 20;
+  output         = std::make_unique<ParticleOutput<dim>>(output_directory, grid_files);
+  n_threads_used = MultithreadInfo::n_threads();
+}
+
+template <int dim>
+void Simulation<dim>::setup_time_step(ParameterHandler &prm)
+{
+  prm.enter_subsection("Time");
+  const double cfl      = prm.get_double("CFL");
+  const double fixed_dt = prm.get_double("Time step");
+  const double max_cfl  = prm.get_double("Maximum CFL");
+  prm.leave_subsection();
+  double c_max = 0;
+  for (const auto &m : materials)
+    c_max = std::max(c_max, m->wave_speed());
+  const double dt_wave = background.min_spacing() / c_max;
+  if (fixed_dt > 0)
+  {
+    std::ostringstream msg;
+    msg << "dt = " << fixed_dt << " s exceeds the stability limit Maximum CFL * h_min / "
+        << "c_P = " << max_cfl * dt_wave << " s (h_min = " << background.min_spacing()
+        << " m, c_P = " << c_max << " m/s)";
+    AssertThrow(fixed_dt <= max_cfl * dt_wave * (1 + 1e-12),
+                ExcBadInput("Time/Time step", msg.str()));
+    dt = fixed_dt;
+  }
+  else
+  {
+    input::require_range(cfl, 0, max_cfl, false, "Time/CFL");
+    AssertThrow(cfl > 0, ExcBadInput("Time/CFL", "must be positive"));
+    dt = cfl * dt_wave;
+  }
+  // Land exactly on the end time.
+  n_steps = static_cast<unsigned int>(std::ceil(end_time / dt - 1e-9));
+  AssertThrow(n_steps < 2e9, ExcBadInput("Time/End time", "needs more than 2e9 steps"));
+  dt = end_time / n_steps;
+}
+
+template <int dim>
+void Simulation<dim>::setup_particles(ParameterHandler &prm,
+                                      const ParameterCounts &counts)
+{
+  const auto &geometries = GeometryRegistry<dim>::instance();
+  const double tol =
+      1e-9 * (background.upper_corner() - background.lower_corner()).norm();
+  for (unsigned int b = 0; b < counts.bodies; ++b)
+  {
+    const std::string section = subsection_name("Body", b);
+    prm.enter_subsection(section);
+    const unsigned int material = prm.get_integer("Material") - 1;
+    AssertThrow(material < materials.size(),
+                ExcBadInput(section + "/Material",
+                            "must be between 1 and Problem/Number of materials = " +
+                                std::to_string(materials.size())));
+    const auto shape = geometries.create(prm.get("Shape"), section + "/Shape");
+    std::vector<std::unique_ptr<Geometry<dim>>> holes;
+    for (const auto &h : input::split(prm.get("Holes"), ';'))
+      holes.push_back(geometries.create(h, section + "/Holes"));
+    const unsigned int n_per_dir = prm.get_integer("Particles per cell direction");
+    Functions::ParsedFunction<dim> velocity(dim);
+    parse_function(prm, "Initial velocity", velocity, section + "/Initial velocity");
+    prm.leave_subsection();
+
+    // The body must lie inside the grid, or part of it would silently vanish.
+    const auto box = shape->bounding_box().get_boundary_points();
+    for (unsigned int d = 0; d < dim; ++d)
+      if (box.first[d] > -1e299)
+        AssertThrow(box.first[d] >= background.lower_corner()[d] - tol &&
+                        box.second[d] <= background.upper_corner()[d] + tol,
+                    ExcBadInput(section + "/Shape",
+                                std::string("the body reaches outside the background "
+                                            "grid along ") +
+                                    axis[d]));
+
+    // Gauss points of the background cells that overlap the body's box.
+    std::array<unsigned int, dim> lo, hi;
+    for (unsigned int d = 0; d < dim; ++d)
+    {
+      const double a = std::max(box.first[d], background.coordinates(d).front());
+      const double z = std::min(box.second[d], background.coordinates(d).back());
+      background.locate(a, d, lo[d]);
+      background.locate(z, d, hi[d]);
+    }
+    const QGauss<1> gauss(n_per_dir);
+    const double rho                  = materials[material]->density();
+    const std::size_t before          = store.size();
+    std::array<unsigned int, dim> ijk = lo;
+    while (true)
+    {
+      std::array<unsigned int, dim> q{};
+      while (true)
+      {
+        Point<dim> x;
+        double volume = dim == 2 ? thickness : 1.0;
+        for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double h = background.spacing(d, ijk[d]);
+          x[d]           = background.coordinates(d)[ijk[d]] + h * gauss.point(q[d])[0];
+          volume *= h * gauss.weight(q[d]);
+        }
+        bool keep = shape->inside(x);
+        for (const auto &h : holes)
+          keep = keep && !h->inside(x);
+        if (keep)
+        {
+          const std::size_t p = store.add(x, rho * volume, volume, material, b);
+          for (unsigned int d = 0; d < dim; ++d)
+            store.velocity[p][d] = velocity.value(x, d);
+        }
+        unsigned int d = 0;
+        while (d < dim && ++q[d] == n_per_dir)
+          q[d++] = 0;
+        if (d == dim)
+          break;
+      }
+      unsigned int d = 0;
+      while (d < dim && ++ijk[d] > hi[d])
+        ijk[d] = lo[d], ++d;
+      if (d == dim)
+        break;
+    }
+    AssertThrow(store.size() > before,
+                ExcBadInput(section + "/Shape", "the body holds no particle: it is "
+                                                "smaller than a cell or fully cut away"));
+  }
+  for (std::size_t p = 0; p < store.size(); ++p)
+    store.id[p] = static_cast<std::uint32_t>(p);
+}
+
+// ------------------------------------------------------------------ one step
+
+template <int dim>
+void Simulation<dim>::abort_run(const std::size_t p, const std::string &why) const
+{
+  AssertThrow(false, ExcRunAborted(step_count, t, store.id[p],
+                                   point_to_string(store.position[p]), why));
+}
+
+template <int dim>
+void Simulation<dim>::locate_and_sort()
+{
+  const std::size_t n = store.size();
+  // The first particle outside the grid (lowest index, so the report is reproducible).
+  std::atomic<std::size_t> lost{n};
+  parallel::for_range(n,
+                      [&](const std::size_t b, const std::size_t e)
+                      {
+                        std::array<unsigned int, dim> ijk;
+                        for (std::size_t p = b; p < e; ++p)
+                          if (background.locate(store.position[p], ijk))
+                            store.cell[p] = background.cell_index(ijk);
+                          else
+                          {
+                            std::size_t cur = lost.load();
+                            while (p < cur && !lost.compare_exchange_weak(cur, p))
+                              ;
+                          }
+                      });
+  if (lost.load() < n)
+    abort_run(lost.load(), "the particle left the background grid (enlarge the grid, or "
+                           "the run is unstable: lower the CFL number)");
+  store.sort_by_cell(background.n_cells());
+}
+
+template <int dim>
+void Simulation<dim>::compute_connectivity()
+{
+  const std::size_t n = store.size();
+  conn.resize(n, shape_function->max_nodes_per_particle());
+  parallel::for_range(n, [&](const std::size_t b, const std::size_t e)
+                      { shape_function->compute(store, b, e, conn); });
+  // Slab width for the colour-split scatter: how far supports reach across layers.
+  unsigned int below = 0, above = 0;
+  for (std::size_t p = 0; p < n; ++p)
+  {
+    const unsigned int layer = background.cell_layer(store.cell[p]);
+    const unsigned int *row  = &conn.nodes[p * conn.stride];
+    const unsigned int lo    = background.node_layer(row[0]);
+    const unsigned int hi    = background.node_layer(row[conn.n_nodes[p] - 1]);
+    below                    = std::max(below, layer > lo ? layer - lo : 0u);
+    above                    = std::max(above, hi > layer ? hi - layer : 0u);
+  }
+  slab_layers = std::max(1u, below + above);
+}
+
+template <int dim>
+template <class F>
+void Simulation<dim>::scatter(const F &f)
+{
+  // Slabs of `slab_layers` cell layers; slabs of one colour touch disjoint nodes, so
+  // they run concurrently, each in particle order: sums do not depend on threads.
+  const auto &offsets         = store.cell_offsets();
+  const unsigned int cpl      = background.cells_per_layer();
+  const unsigned int n_layers = background.n_cells_in(dim - 1);
+  const unsigned int w        = slab_layers;
+  const unsigned int n_slabs  = (n_layers + w - 1) / w;
+  auto run_slab               = [&](const unsigned int s)
+  {
+    const std::size_t b = offsets[s * w * cpl];
+    const std::size_t e = offsets[std::min((s + 1) * w, n_layers) * cpl];
+    for (std::size_t p = b; p < e; ++p)
+      f(p);
+  };
+  for (unsigned int colour = 0; colour < 2; ++colour)
+  {
+    const unsigned int n_this = (n_slabs + 1 - colour) / 2;
+    if (n_threads_used == 1 || n_this < 2)
+      for (unsigned int i = 0; i < n_this; ++i)
+        run_slab(colour + 2 * i);
+    else
+      dealii::parallel::apply_to_subranges(
+          0u, n_this,
+          [&](const unsigned int i0, const unsigned int i1)
+          {
+            for (unsigned int i = i0; i < i1; ++i)
+              run_slab(colour + 2 * i);
+          },
+          1);
+  }
+}
+
+template <int dim>
+void Simulation<dim>::step()
+{
+  const std::size_t n_p  = store.size();
+  const unsigned int n_n = background.n_nodes();
+  const double t_half = t + 0.5 * dt, t_new = t + dt;
+
+  locate_and_sort();
+  compute_connectivity();
+
+  // Particle to grid: mass, momentum and mass-weighted acceleration.
+  nodal_mass.assign(n_n, 0.0);
+  nodal_momentum.assign(n_n, Tensor<1, dim>());
+  nodal_mass_acceleration.assign(n_n, Tensor<1, dim>());
+  scatter(
+      [&](const std::size_t p)
+      {
+        const std::size_t o     = p * conn.stride;
+        const double m          = store.mass[p];
+        const Tensor<1, dim> mv = m * store.velocity[p], ma = m * store.acceleration[p];
+        for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+        {
+          const unsigned int I = conn.nodes[o + k];
+          const double N       = conn.N[o + k];
+          nodal_mass[I] += N * m;
+          nodal_momentum[I] += N * mv;
+          nodal_mass_acceleration[I] += N * ma;
+        }
+      });
+
+  // Displacement predictor on the grid, then the essential conditions on it.
+  nodal_rate.resize(n_n);
+  parallel::for_range(n_n,
+                      [&](const std::size_t b, const std::size_t e)
+                      {
+                        for (std::size_t I = b; I < e; ++I)
+                          nodal_rate[I] =
+                              nodal_mass[I] > mass_tolerance
+                                  ? newmark.displacement_rate(
+                                        nodal_momentum[I] / nodal_mass[I],
+                                        nodal_mass_acceleration[I] / nodal_mass[I], dt)
+                                  : Tensor<1, dim>();
+                      });
+  for (auto &c : constraints)
+    for (unsigned int i = 0; i < c->nodes().size(); ++i)
+    {
+      const Tensor<1, dim> v = c->velocity(i, t_half);
+      for (unsigned int d = 0; d < dim; ++d)
+        if (c->constrains(d))
+          nodal_rate[c->nodes()[i]][d] = v[d];
+    }
+
+  // Strain increment, density and the particle displacement increment.
+  particle_increment.resize(n_p);
+  parallel::for_range(n_p,
+                      [&](const std::size_t b, const std::size_t e)
+                      {
+                        for (std::size_t p = b; p < e; ++p)
+                        {
+                          const std::size_t o = p * conn.stride;
+                          Tensor<2, dim> grad_v;
+                          Tensor<1, dim> v;
+                          for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+                          {
+                            const Tensor<1, dim> &w = nodal_rate[conn.nodes[o + k]];
+                            grad_v += outer_product(w, conn.grad_N[o + k]);
+                            v += conn.N[o + k] * w;
+                          }
+                          const SymmetricTensor<2, dim> de = dt * symmetrize(grad_v);
+                          store.strain_increment[p]        = de;
+                          store.strain[p] += de;
+                          store.density[p] /= (1 + trace(de));
+                          store.volume[p]       = store.mass[p] / store.density[p];
+                          particle_increment[p] = dt * v;
+                        }
+                      });
+
+  // Constitutive update, one call per material and block.
+  parallel::for_range(n_p,
+                      [&](const std::size_t b, const std::size_t e)
+                      {
+                        for (unsigned int m = 0; m < materials.size(); ++m)
+                          materials[m]->update_stress(store, b, e, m);
+                      });
+
+  // Grid forces: internal (damaged stress) and body force.
+  nodal_force.assign(n_n, Tensor<1, dim>());
+  scatter(
+      [&](const std::size_t p)
+      {
+        const std::size_t o = p * conn.stride;
+        const SymmetricTensor<2, dim> s =
+            (store.failed[p] ? 0.0 : (1 - store.damage[p]) * store.volume[p]) *
+            store.stress[p];
+        const Tensor<1, dim> g = store.mass[p] * body_force;
+        for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+          nodal_force[conn.nodes[o + k]] += conn.N[o + k] * g - s * conn.grad_N[o + k];
+      });
+
+  // Accelerations, the constraints' accelerations and their reactions.
+  nodal_acceleration.resize(n_n);
+  parallel::for_range(n_n,
+                      [&](const std::size_t b, const std::size_t e)
+                      {
+                        for (std::size_t I = b; I < e; ++I)
+                          nodal_acceleration[I] = nodal_mass[I] > mass_tolerance
+                                                      ? nodal_force[I] / nodal_mass[I]
+                                                      : Tensor<1, dim>();
+                      });
+  double power = 0;
+  for (auto &c : constraints)
+  {
+    c->reaction = Tensor<1, dim>();
+    Tensor<1, dim> mean_rate;
+    for (unsigned int i = 0; i < c->nodes().size(); ++i)
+    {
+      const unsigned int I       = c->nodes()[i];
+      const Tensor<1, dim> v_old = c->velocity(i, t), v_new = c->velocity(i, t_new);
+      for (unsigned int d = 0; d < dim; ++d)
+        if (c->constrains(d))
+        {
+          const double a           = (v_new[d] - v_old[d]) / dt;
+          const double r           = nodal_mass[I] * a - nodal_force[I][d];
+          nodal_acceleration[I][d] = a;
+          c->reaction[d] += r;
+          power += r * v_new[d];
+          mean_rate[d] += nodal_rate[I][d];
+        }
+    }
+    c->displacement += (dt / c->nodes().size()) * mean_rate;
+  }
+
+  // Grid to particle: Newmark corrector for velocity, predictor for position.
+  std::atomic<std::size_t> bad{n_p};
+  const double max_move   = 0.5 * background.min_spacing();
+  const double body_power = parallel::deterministic_sum<double>(
+      n_p,
+      [&](const std::size_t b, const std::size_t e)
+      {
+        double pw = 0;
+        for (std::size_t p = b; p < e; ++p)
+        {
+          const std::size_t o = p * conn.stride;
+          Tensor<1, dim> a;
+          for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+            a += conn.N[o + k] * nodal_acceleration[conn.nodes[o + k]];
+          store.velocity[p] =
+              newmark.corrected_velocity(store.velocity[p], store.acceleration[p], a, dt);
+          store.acceleration[p] = a;
+          store.position[p] += particle_increment[p];
+          pw += store.mass[p] * (body_force * store.velocity[p]);
+          const double move = particle_increment[p].norm();
+          if (!(move < max_move) || !std::isfinite(store.velocity[p].norm_square()) ||
+              !(store.density[p] > 0))
+          {
+            std::size_t cur = bad.load();
+            while (p < cur && !bad.compare_exchange_weak(cur, p))
+              ;
+          }
+        }
+        return pw;
+      });
+  power += body_power;
+  external_work += 0.5 * dt * (external_power + power);
+  external_power = power;
+  t              = t_new;
+  ++step_count;
+
+  if (bad.load() < n_p)
+  {
+    const std::size_t p = bad.load();
+    std::string why;
+    if (!std::isfinite(store.velocity[p].norm_square()))
+      why = "non-finite velocity (the run is unstable: lower the CFL number)";
+    else if (!(store.density[p] > 0))
+      why = "non-positive density (the material is inverted: the deformation is too "
+            "large for a small-strain model, or the run is unstable)";
+    else
+      why = "the particle moved more than half a cell in one step (the run is "
+            "unstable or the time step too large: lower the CFL number)";
+    abort_run(p, why);
+  }
+}
+
+// ------------------------------------------------------------------ reporting
+
+template <int dim>
+std::map<std::string, double> Simulation<dim>::energies() const
+{
+  const std::size_t n = store.size();
+  const double ke     = parallel::deterministic_sum<double>(
+      n,
+      [&](const std::size_t b, const std::size_t e)
+      {
+        double s = 0;
+        for (std::size_t p = b; p < e; ++p)
+          s += 0.5 * store.mass[p] * store.velocity[p].norm_square();
+        return s;
+      });
+  const double se = parallel::deterministic_sum<double>(
+      n,
+      [&](const std::size_t b, const std::size_t e)
+      {
+        double s = 0;
+        for (unsigned int m = 0; m < materials.size(); ++m)
+          s += materials[m]->strain_energy(store, b, e, m);
+        return s;
+      });
+  return {{"kinetic_energy", ke},
+          {"strain_energy", se},
+          {"external_work", external_work},
+          {"total_energy", ke + se - external_work}};
+}
+
+template <int dim>
+void Simulation<dim>::write_output_row(const bool final_row)
+{
+  (void)final_row;
+  auto e = energies();
+  if (step_count == 0)
+    initial_total_energy = e["total_energy"];
+  const double drift = std::abs(e["total_energy"] - initial_total_energy) /
+                       std::max(std::abs(initial_total_energy), 1e-300);
+  max_energy_drift = std::max(max_energy_drift, drift);
+
+  std::ostringstream row;
+  row << std::setprecision(10) << step_count << "," << t << "," << e["kinetic_energy"]
+      << "," << e["strain_energy"] << "," << e["external_work"] << ","
+      << e["total_energy"];
+  for (const auto &c : constraints)
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      row << "," << c->reaction[d];
+    for (unsigned int d = 0; d < dim; ++d)
+      row << "," << c->displacement[d];
+  }
+  for (const auto &probe : probes)
+  {
+    SymmetricTensor<2, dim> s;
+    double w = 0;
+    for (std::size_t p = 0; p < store.size(); ++p)
+      if (store.position[p].distance(probe.point) <= probe.radius)
+        s += store.volume[p] * store.stress[p], w += store.volume[p];
+    if (w > 0)
+      s /= w;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = i; j < dim; ++j)
+        row << "," << s[i][j];
+  }
+  if (compare_exact)
+  {
+    exact_displacement->set_time(t);
+    exact_velocity->set_time(t);
+    double eu = 0, ev = 0;
+    for (std::size_t p = 0; p < store.size(); ++p)
+    {
+      const Point<dim> &X = store.reference_position[p];
+      for (unsigned int d = 0; d < dim; ++d)
+      {
+        const double du = store.position[p][d] - X[d] - exact_displacement->value(X, d);
+        const double dv = store.velocity[p][d] - exact_velocity->value(X, d);
+        eu += store.initial_volume[p] * du * du;
+        ev += store.initial_volume[p] * dv * dv;
+      }
+    }
+    const double err_u     = std::sqrt(eu) / exact_displacement_norm;
+    const double err_v     = std::sqrt(ev) / exact_velocity_norm;
+    max_error_displacement = std::max(max_error_displacement, err_u);
+    max_error_velocity     = std::max(max_error_velocity, err_v);
+    row << "," << err_u << "," << err_v;
+  }
+  history << row.str() << "\n" << std::flush;
+  results["final_total_energy"]   = e["total_energy"];
+  results["final_kinetic_energy"] = e["kinetic_energy"];
+  results["final_strain_energy"]  = e["strain_energy"];
+
+  if (write_particles)
+    output->write(store, t);
+  output->write_grid(background, nodal_mass, nodal_rate, t);
+}
+
+// ------------------------------------------------------------------ driver
+
+template <int dim>
+std::map<std::string, double> Simulation<dim>::run()
+{
+  TimerOutput timer(pcout, TimerOutput::summary, TimerOutput::wall_times);
+  const auto start = std::chrono::steady_clock::now();
+
+  double min_mass = std::numeric_limits<double>::max();
+  for (const double m : store.mass)
+    min_mass = std::min(min_mass, m);
+  mass_tolerance = 1e-12 * min_mass;
+
+  // The exact fields' largest L2 norms over the output times normalise the errors.
+  if (compare_exact)
+    for (double s = 0; s <= end_time * (1 + 1e-12); s += output_interval)
+    {
+      exact_displacement->set_time(s);
+      exact_velocity->set_time(s);
+      double nu = 0, nv = 0;
+      for (std::size_t p = 0; p < store.size(); ++p)
+        for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double u = exact_displacement->value(store.reference_position[p], d);
+          const double v = exact_velocity->value(store.reference_position[p], d);
+          nu += store.initial_volume[p] * u * u;
+          nv += store.initial_volume[p] * v * v;
+        }
+      exact_displacement_norm = std::max(exact_displacement_norm, std::sqrt(nu));
+      exact_velocity_norm     = std::max(exact_velocity_norm, std::sqrt(nv));
+    }
+  exact_displacement_norm = std::max(exact_displacement_norm, 1e-300);
+  exact_velocity_norm     = std::max(exact_velocity_norm, 1e-300);
+
+  // Only now, with every input checked, does the run write anything.
+  std::filesystem::create_directories(output_directory);
+  history.open(output_directory + "/history.csv");
+  AssertThrow(history, ExcBadInput("Output/Directory",
+                                   "cannot write to '" + output_directory + "'"));
+  history << "step,time,kinetic_energy,strain_energy,external_work,total_energy";
+  for (const auto &c : constraints)
+    for (const char *q : {"force", "displacement"})
+      for (unsigned int d = 0; d < dim; ++d)
+        history << "," << q << "_" << c->name() << "_" << axis[d];
+  for (const auto &probe : probes)
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = i; j < dim; ++j)
+        history << ",probe_" << probe.name << "_s" << axis[i] << axis[j];
+  if (compare_exact)
+    history << ",error_displacement_l2,error_velocity_l2";
+  history << "\n";
+
+  pcout << "lme-mpm: " << dim << "D, " << store.size() << " particles, "
+        << background.n_nodes() << " nodes, shape functions '" << shape_function->name()
+        << "', dt = " << dt << " s, " << n_steps << " steps, " << n_threads_used
+        << " thread(s)" << std::endl;
+
+  std::string status = "completed", message;
+  try
+  {
+    {
+      TimerOutput::Scope scope(timer, "output");
+      write_output_row(false);
+    }
+    next_output_time                = output_interval;
+    const unsigned int report_every = std::max(1u, n_steps / 10);
+    while (step_count < n_steps)
+    {
+      {
+        TimerOutput::Scope scope(timer, "time step");
+        step();
+      }
+      if (t >= next_output_time - 0.5 * dt || step_count == n_steps)
+      {
+        TimerOutput::Scope scope(timer, "output");
+        write_output_row(step_count == n_steps);
+        while (next_output_time <= t + 0.5 * dt)
+          next_output_time += output_interval;
+      }
+      if (step_count % report_every == 0 || step_count == n_steps)
+      {
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                .count();
+        pcout << "  step " << std::setw(8) << step_count << "  t = " << std::setw(12)
+              << std::setprecision(5) << t << "  " << std::setw(3)
+              << 100 * step_count / n_steps << "%  " << std::setprecision(3)
+              << store.size() * step_count / elapsed << " particle-steps/s  ETA "
+              << std::setprecision(3) << elapsed * (n_steps - step_count) / step_count
+              << " s" << std::endl;
+      }
+    }
+  }
+  catch (const ExcRunAborted &e)
+  {
+    status  = "aborted";
+    message = e.what();
+    // Keep what the run produced: one last row and particle file at the failure.
+    try
+    {
+      write_output_row(true);
+    }
+    catch (...)
+    {
+    }
+  }
+
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  results["wall_seconds"]              = wall;
+  results["steps"]                     = step_count;
+  results["particles"]                 = store.size();
+  results["nodes"]                     = background.n_nodes();
+  results["threads"]                   = n_threads_used;
+  results["time_step"]                 = dt;
+  results["particle_steps_per_second"] = store.size() * double(step_count) / wall;
+  results["max_energy_drift"]          = max_energy_drift;
+  if (compare_exact)
+  {
+    results["max_error_displacement_l2"] = max_error_displacement;
+    results["max_error_velocity_l2"]     = max_error_velocity;
+  }
+  for (const auto &s : shape_function->statistics())
+    results["shape_function_" + s.first] = s.second;
+
+  std::ofstream json(output_directory + "/summary.json");
+  json << std::setprecision(10) << "{\n  \"status\": \"" << status << "\",\n"
+       << "  \"shape_function\": \"" << shape_function->name() << "\",\n"
+       << "  \"dimension\": " << dim;
+  for (const auto &r : results)
+    json << ",\n  \"" << r.first << "\": " << r.second;
+  json << "\n}\n";
+  json.close();
+
+  if (status != "completed")
+  {
+    // Past this point the output is on disk; the caller reports the failure.
+    std::string text = message;
+    const auto pos   = text.find("Run stopped");
+    AssertThrow(false, ExcMessage(pos == std::string::npos ? text : text.substr(pos)));
+  }
+  pcout << "Finished: " << step_count << " steps in " << wall << " s ("
+        << results["particle_steps_per_second"] << " particle-steps/s); max energy drift "
+        << max_energy_drift << std::endl;
+  return results;
+}
+
+template class Simulation<2>;
+template class Simulation<3>;
+
+// ------------------------------------------------------------------ entry points
+
+void apply_overrides(ParameterHandler &prm, const std::vector<std::string> &overrides,
+                     const bool skip_unknown)
+{
+  for (const auto &o : overrides)
+  {
+    const auto eq = o.find('=');
+    AssertThrow(eq != std::string::npos,
+                ExcBadInput("--set " + o, "expected 'Subsection/Entry=value'"));
+    const auto path  = input::split(o.substr(0, eq), '/');
+    const auto value = input::trim(o.substr(eq + 1));
+    AssertThrow(!path.empty(), ExcBadInput("--set " + o, "no entry named"));
+    for (std::size_t i = 0; i + 1 < path.size(); ++i)
+      prm.enter_subsection(path[i]);
+    try
+    {
+      prm.set(path.back(), value);
+    }
+    catch (const ParameterHandler::ExcEntryUndeclared &)
+    {
+      for (std::size_t i = 0; i + 1 < path.size(); ++i)
+        prm.leave_subsection();
+      AssertThrow(skip_unknown, ExcBadInput(o.substr(0, eq), "no such entry"));
+      continue;
+    }
+    catch (const ParameterHandler::ExcValueDoesNotMatchPattern &e)
+    {
+      for (std::size_t i = 0; i + 1 < path.size(); ++i)
+        prm.leave_subsection();
+      AssertThrow(skip_unknown, ExcBadInput(o.substr(0, eq), input::concise_message(e)));
+      continue;
+    }
+    for (std::size_t i = 0; i + 1 < path.size(); ++i)
+      prm.leave_subsection();
+  }
+}
+
+namespace
+{
+template <int dim>
+std::map<std::string, double>
+run_dim(const std::string &file, const std::vector<std::string> &overrides,
+        const ParameterCounts &counts, std::ostream &console)
+{
+  ParameterHandler prm;
+  Simulation<dim>::declare_parameters(prm, counts);
+  prm.parse_input(file, "", false, false);
+  apply_overrides(prm, overrides, false);
+  Simulation<dim> simulation(prm, counts, console);
+  return simulation.run();
+}
+} // namespace
+
+std::map<std::string, double>
+run_parameter_file(const std::string &file, const std::vector<std::string> &overrides,
+                   std::ostream &console)
+{
+  AssertThrow(std::filesystem::exists(file),
+              ExcBadInput("parameter file", "'" + file + "' does not exist"));
+  // First pass: how many materials, bodies, ... the file declares.
+  ParameterCounts counts;
+  {
+    ParameterHandler prm;
+    ParameterCounts::declare_parameters(prm);
+    prm.parse_input(file, "", true, false);
+    apply_overrides(prm, overrides, true);
+    counts.parse_parameters(prm);
+  }
+  if (counts.dim == 2)
+    return run_dim<2>(file, overrides, counts, console);
+  return run_dim<3>(file, overrides, counts, console);
+}
+
+void print_default_parameters(std::ostream &out)
+{
+  ParameterHandler prm;
+  Simulation<2>::declare_parameters(prm, ParameterCounts{2, 1, 1, 1, 1});
+  prm.print_parameters(out, ParameterHandler::PRM);
+}
+} // namespace lme_mpm
