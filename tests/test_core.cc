@@ -150,3 +150,33 @@ TEST(VibratingBar, LinearErrorBoundAndConvergence)
   std::cout << "vibrating bar (linear): errors " << errors[0] << " " << errors[1] << " "
             << errors[2] << ", order " << std::log2(errors[1] / errors[2]) << std::endl;
 }
+
+TEST(TwoDiscCollision, EnergyConservedAndDiscsBounceApart)
+{
+  ParameterHandler prm;
+  ParameterCounts counts;
+  counts.bodies = 2;
+  Simulation<2>::declare_parameters(prm, counts);
+  prm.parse_input(lme_mpm_test::scene("two_disk_collision.prm"));
+  apply_overrides(prm,
+                  {"Output/Verbosity=0", "Output/Write particle files=false",
+                   "Output/Directory=" + lme_mpm_test::scratch("discs")},
+                  false);
+  std::ostringstream quiet;
+  Simulation<2> sim(prm, counts, quiet);
+  const auto summary = sim.run();
+  EXPECT_LT(summary.at("max_energy_drift"), 0.03);
+  std::cout << "two discs (scene default shape functions): max energy drift "
+            << summary.at("max_energy_drift") << std::endl;
+  // Momentum of each disc after the impact: they move apart along the diagonal.
+  Tensor<1, 2> momentum[2];
+  for (std::size_t p = 0; p < sim.particles().size(); ++p)
+    momentum[sim.particles().body_id[p]] +=
+        sim.particles().mass[p] * sim.particles().velocity[p];
+  EXPECT_LT(momentum[0][0], 0);
+  EXPECT_LT(momentum[0][1], 0);
+  EXPECT_GT(momentum[1][0], 0);
+  EXPECT_GT(momentum[1][1], 0);
+  // Total momentum stays zero (equal and opposite discs).
+  EXPECT_LT((momentum[0] + momentum[1]).norm(), 1e-9 * momentum[0].norm());
+}

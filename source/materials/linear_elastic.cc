@@ -78,7 +78,7 @@ double LinearElastic<dim>::strain_energy(const ParticleStore<dim> &particles,
   double w = 0;
   for (std::size_t p = begin; p < end; ++p)
     if (particles.material_id[p] == material_id)
-      w += 0.5 * (1 - particles.damage[p]) * particles.volume[p] *
+      w += 0.5 * (1 - particles.damage[p]) * particles.initial_volume[p] *
            (particles.stress[p] * particles.strain[p]);
   return w;
 }

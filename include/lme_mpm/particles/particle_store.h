@@ -64,6 +64,8 @@ public:
   // Fracture state.
   std::vector<double> damage;       ///< chi in [0, 1]
   std::vector<double> onset_strain; ///< principal strain at softening onset
+  std::vector<double> onset_stress; ///< own max principal stress at onset
+  std::vector<double> dissipated;   ///< fracture energy dissipated so far (J)
   std::vector<std::uint8_t> failed; ///< 1 once fully failed (no stress)
 
   /// Calls f(vector) for every per-particle field.
@@ -73,7 +75,7 @@ public:
     f(position), f(reference_position), f(velocity), f(acceleration), f(mass), f(volume),
         f(initial_volume), f(density), f(strain), f(strain_increment), f(stress), f(id),
         f(material_id), f(body_id), f(cell), f(lme_lambda), f(damage), f(onset_strain),
-        f(failed);
+        f(onset_stress), f(dissipated), f(failed);
   }
 
 private:

@@ -7,6 +7,8 @@
 #include <deal.II/base/timer.h>
 
 #include <lme_mpm/boundary/node_constraints.h>
+#include <lme_mpm/fracture/fracture_model.h>
+#include <lme_mpm/fracture/neighbourhood.h>
 #include <lme_mpm/grid/background_grid.h>
 #include <lme_mpm/materials/material.h>
 #include <lme_mpm/output/particle_output.h>
@@ -87,6 +89,7 @@ private:
   void scatter(const F &f);
   void write_output_row(bool final_row);
   void abort_run(std::size_t p, const std::string &why) const;
+  void update_fracture();
 
   // Configuration.
   unsigned int verbosity;
@@ -104,6 +107,11 @@ private:
   ParticleStore<dim> store;
   std::unique_ptr<ShapeFunction<dim>> shape_function;
   std::vector<std::unique_ptr<Material<dim>>> materials;
+  /// Per material; null where the material does not fracture.
+  std::vector<std::unique_ptr<FractureModel<dim>>> fracture_models;
+  Neighbourhood<dim> neighbours;
+  FractureFields fracture_fields;
+  bool fracture_active = false;
   std::vector<std::unique_ptr<NodeConstraint<dim>>> constraints;
   std::vector<Probe<dim>> probes;
   Connectivity<dim> conn;
@@ -118,7 +126,7 @@ private:
 
   // Energy accounting.
   double external_work = 0, external_power = 0, initial_total_energy = 0;
-  double max_energy_drift = 0;
+  double max_energy_drift = 0, energy_scale = 0;
 
   // Exact solution (verification scenes).
   bool compare_exact = false;

@@ -1,0 +1,80 @@
+#ifndef LME_MPM_FRACTURE_FRACTURE_MODEL_H
+#define LME_MPM_FRACTURE_FRACTURE_MODEL_H
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <lme_mpm/base/registry.h>
+#include <lme_mpm/fracture/neighbourhood.h>
+#include <lme_mpm/particles/particle_store.h>
+
+#include <string>
+#include <vector>
+
+namespace lme_mpm
+{
+/// A snapshot of the particle fields fracture models read from neighbours, taken
+/// before any particle changes state in the step (so the update is order-free).
+struct FractureFields
+{
+  std::vector<double> max_principal_stress; ///< of the undamaged stress; 0 once failed
+  std::vector<double> energy_density;       ///< sigma : eps / 2 (J/m^3); 0 once failed
+};
+
+/// What a fracture model is built with.
+struct FractureContext
+{
+  double grid_spacing   = 0; ///< h in eps = C_eps h
+  double thickness      = 1; ///< 2D thickness, for the particle spacing
+  unsigned int dim      = 2;
+  double p_wave_modulus = 0; ///< rho c_P^2 of the material, for sanity checks
+  std::string section;       ///< "Material N/Fracture", for messages
+};
+
+/**
+ * A fracture model acting on the particles of one material through their
+ * epsilon-neighbourhood: it may set damage, onset data, failure and the dissipated
+ * energy of the particles in a range, reading neighbours only through
+ * FractureFields. One virtual call per block of particles.
+ */
+template <int dim>
+class FractureModel
+{
+public:
+  virtual ~FractureModel()         = default;
+  virtual std::string name() const = 0;
+  /// Radius of the epsilon-neighbourhood (m).
+  virtual double epsilon() const                      = 0;
+  virtual void update(ParticleStore<dim> &particles, const Neighbourhood<dim> &neighbours,
+                      const FractureFields &fields, std::size_t begin, std::size_t end,
+                      unsigned int material_id) const = 0;
+  /// Counters for summary.json.
+  virtual std::vector<std::pair<std::string, double>> statistics() const { return {}; }
+};
+
+template <int dim>
+using FractureModelRegistry = Registry<FractureModel<dim>, FractureContext>;
+
+/// Entries of "Material N/Fracture" shared by the built-in models.
+void declare_fracture_parameters(dealii::ParameterHandler &prm);
+} // namespace lme_mpm
+
+/// Registers fracture model class template CLASS (dim-templated) as NAME.
+#define LME_MPM_REGISTER_FRACTURE_MODEL(CLASS, NAME, DESCRIPTION)                        \
+  namespace                                                                              \
+  {                                                                                      \
+  template <int dim>                                                                     \
+  bool register_fracture_##CLASS()                                                       \
+  {                                                                                      \
+    return ::lme_mpm::FractureModelRegistry<dim>::instance().add(                        \
+        NAME,                                                                            \
+        {DESCRIPTION, nullptr,                                                           \
+         [](dealii::ParameterHandler &prm, const ::lme_mpm::FractureContext &ctx) {      \
+           return std::unique_ptr<::lme_mpm::FractureModel<dim>>(                        \
+               new CLASS<dim>(prm, ctx));                                                \
+         }});                                                                            \
+  }                                                                                      \
+  const bool registered_fracture_2d_##CLASS = register_fracture_##CLASS<2>();            \
+  const bool registered_fracture_3d_##CLASS = register_fracture_##CLASS<3>();            \
+  }
+
+#endif

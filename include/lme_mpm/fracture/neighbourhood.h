@@ -1,0 +1,43 @@
+#ifndef LME_MPM_FRACTURE_NEIGHBOURHOOD_H
+#define LME_MPM_FRACTURE_NEIGHBOURHOOD_H
+
+#include <deal.II/base/point.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace lme_mpm
+{
+using namespace dealii;
+
+/**
+ * The epsilon-neighbourhood of every particle: the particles within a radius,
+ * itself included, in compressed rows. Built in linear time by binning the particles
+ * into cubes as wide as the radius (a cell-linked list), so each particle looks only
+ * at the 3^dim cubes around it. Rows are sorted, so the result does not depend on the
+ * thread count.
+ */
+template <int dim>
+class Neighbourhood
+{
+public:
+  /// Rebuilds the lists for @p positions with search radius @p radius.
+  void build(const std::vector<Point<dim>> &positions, double radius);
+
+  std::size_t size() const { return offsets.empty() ? 0 : offsets.size() - 1; }
+  double radius() const { return search_radius; }
+  const std::uint32_t *begin(const std::size_t p) const { return &list[offsets[p]]; }
+  const std::uint32_t *end(const std::size_t p) const { return &list[offsets[p + 1]]; }
+  std::size_t count(const std::size_t p) const { return offsets[p + 1] - offsets[p]; }
+  std::size_t n_pairs() const { return list.size(); }
+
+private:
+  double search_radius = 0;
+  std::vector<std::size_t> offsets;
+  std::vector<std::uint32_t> list;
+  // Binning scratch, kept between builds.
+  std::vector<std::uint32_t> bin_of, bin_start, sorted;
+};
+} // namespace lme_mpm
+
+#endif

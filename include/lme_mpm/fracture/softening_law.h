@@ -1,0 +1,52 @@
+#ifndef LME_MPM_FRACTURE_SOFTENING_LAW_H
+#define LME_MPM_FRACTURE_SOFTENING_LAW_H
+
+#include <lme_mpm/base/registry.h>
+
+#include <string>
+
+namespace lme_mpm
+{
+/// Parameters a cohesive law is built from.
+struct SofteningContext
+{
+  double tensile_strength = 0; ///< f_t (Pa)
+  double fracture_energy  = 0; ///< G_F (N/m)
+  double critical_opening = 0; ///< w_c (m); 0: the law's own default
+  std::string section;         ///< for error messages
+};
+
+/**
+ * A cohesive softening law sigma(w) = f_t g(w) for the crack opening w, with g(0) = 1,
+ * g decreasing to 0 at critical_opening(), and f_t * integral of g = G_F. Evaluated
+ * only for particles that are softening, through a virtual call, which costs nothing
+ * next to the neighbourhood sums.
+ */
+class SofteningLaw
+{
+public:
+  virtual ~SofteningLaw()          = default;
+  virtual std::string name() const = 0;
+  /// g(w) = sigma / f_t.
+  virtual double traction_ratio(double w) const = 0;
+  /// Opening where the traction vanishes (an unbounded law stops at g = 1e-3).
+  virtual double critical_opening() const = 0;
+  /// max |dg/dw|, for the snap-back limit of the band width.
+  virtual double max_slope() const = 0;
+};
+
+using SofteningLawRegistry = Registry<SofteningLaw, SofteningContext>;
+} // namespace lme_mpm
+
+/// Registers softening law CLASS (constructed from const SofteningContext &) as NAME.
+#define LME_MPM_REGISTER_SOFTENING_LAW(CLASS, NAME, DESCRIPTION)                         \
+  namespace                                                                              \
+  {                                                                                      \
+  const bool registered_softening_##CLASS =                                              \
+      ::lme_mpm::SofteningLawRegistry::instance().add(                                   \
+          NAME, {DESCRIPTION, nullptr,                                                   \
+                 [](dealii::ParameterHandler &, const ::lme_mpm::SofteningContext &ctx)  \
+                 { return std::unique_ptr<::lme_mpm::SofteningLaw>(new CLASS(ctx)); }}); \
+  }
+
+#endif

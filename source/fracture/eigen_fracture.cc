@@ -1,0 +1,259 @@
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <lme_mpm/base/input.h>
+#include <lme_mpm/fracture/fracture_model.h>
+#include <lme_mpm/fracture/softening_law.h>
+
+#include <atomic>
+#include <cmath>
+#include <memory>
+
+namespace lme_mpm
+{
+void declare_fracture_parameters(ParameterHandler &prm)
+{
+  prm.declare_entry(
+      "Model", "none",
+      Patterns::Selection("none|" + FractureModelRegistry<2>::instance().pattern()),
+      "Fracture model of this material: none, or " +
+          FractureModelRegistry<2>::instance().documentation());
+  prm.declare_entry("Epsilon factor", "2", Patterns::Double(0),
+                    "C_eps: the epsilon-neighbourhood radius is C_eps times the grid "
+                    "spacing; > 0, and C_eps h should exceed the particle spacing.");
+  prm.declare_entry("Fracture energy", "100", Patterns::Double(0),
+                    "G_c (eigenerosion) or G_F (eigensoftening), N/m, > 0.");
+  prm.declare_entry("Tensile strength", "3e6", Patterns::Double(0),
+                    "f_t (Pa), > 0: eigensoftening starts when the neighbourhood's "
+                    "mass-weighted max principal stress exceeds it.");
+  prm.declare_entry("Softening law", "linear",
+                    Patterns::Selection(SofteningLawRegistry::instance().pattern()),
+                    "Cohesive law of eigensoftening. " +
+                        SofteningLawRegistry::instance().documentation());
+  prm.declare_entry("Critical opening", "0", Patterns::Double(0),
+                    "w_c (m) where the law reaches zero traction; 0: the law's own "
+                    "value (linear 2 G_F/f_t, bilinear 3.6 G_F/f_t).");
+  prm.declare_entry("Band width", "0", Patterns::Double(0),
+                    "h_eps (m), the width the crack opening is spread over; 0 ties it to "
+                    "the grid spacing h (crack-band regularisation: a crack localises in "
+                    "one cell with linear shape functions).");
+  prm.declare_entry("Damage rule", "crack band", Patterns::Selection("crack band|paper"),
+                    "'crack band': the damage makes the particle's max principal stress "
+                    "follow the cohesive law, so the band dissipates G_F per unit area; "
+                    "'paper': chi = 1 - g((eps_I - eps_onset) h_eps), the draft's eq. 22 "
+                    "(dissipates more than G_F: doc/theory.md).");
+}
+
+namespace fracture
+{
+template <int dim>
+double max_principal(const SymmetricTensor<2, dim> &t)
+{
+  return eigenvalues(t)[0];
+}
+
+/**
+ * Eigensoftening (Navas et al. 2018): softening starts where the mass-weighted mean
+ * of the max principal stress over the epsilon-neighbourhood (failed neighbours
+ * count with zero stress, all with their mass) exceeds f_t; the particle then damages
+ * with its max principal strain beyond the onset value, spread over the band width.
+ */
+template <int dim>
+class Eigensoftening : public FractureModel<dim>
+{
+public:
+  Eigensoftening(ParameterHandler &prm, const FractureContext &c)
+      : grid_spacing(c.grid_spacing)
+  {
+    const double C_eps = prm.get_double("Epsilon factor");
+    input::require_range(C_eps, 0, 1e6, true, c.section + "/Epsilon factor");
+    eps = C_eps * c.grid_spacing;
+    SofteningContext sc;
+    sc.tensile_strength = prm.get_double("Tensile strength");
+    sc.fracture_energy  = prm.get_double("Fracture energy");
+    sc.critical_opening = prm.get_double("Critical opening");
+    sc.section          = c.section;
+    input::require_range(sc.tensile_strength, 0, 1e300, true,
+                         c.section + "/Tensile strength");
+    input::require_range(sc.fracture_energy, 0, 1e300, true,
+                         c.section + "/Fracture energy");
+    f_t = sc.tensile_strength;
+    law = SofteningLawRegistry::instance().create(prm.get("Softening law"), prm, sc);
+    w_c = law->critical_opening();
+    band_width = prm.get_double("Band width");
+    paper_rule = prm.get("Damage rule") == "paper";
+    // A band wider than M / (f_t max|g'|) snaps back: the softening branch cannot be
+    // followed. Checked with the P-wave modulus here and per particle at onset.
+    if (band_width > 0 && !paper_rule && c.p_wave_modulus > 0)
+    {
+      const double limit = c.p_wave_modulus / (f_t * law->max_slope());
+      std::ostringstream msg;
+      msg << "h_eps = " << band_width << " m is beyond the snap-back limit " << limit
+          << " m (about 2 E G_F / f_t^2 for linear softening)";
+      AssertThrow(band_width < limit, ExcBadInput(c.section + "/Band width", msg.str()));
+    }
+  }
+
+  std::string name() const override { return "eigensoftening"; }
+  double epsilon() const override { return eps; }
+
+  void update(ParticleStore<dim> &P, const Neighbourhood<dim> &nb,
+              const FractureFields &F, const std::size_t begin, const std::size_t end,
+              const unsigned int material_id) const override
+  {
+    const double eps2     = eps * eps;
+    unsigned long snapped = 0;
+    for (std::size_t p = begin; p < end; ++p)
+    {
+      if (P.material_id[p] != material_id || P.failed[p])
+        continue;
+      const double eps_I = max_principal(P.strain[p]);
+      const double sig_I = F.max_principal_stress[p];
+      if (P.onset_strain[p] == 0)
+      {
+        double ms = 0, m = 0;
+        for (auto q = nb.begin(p); q != nb.end(p); ++q)
+          if (P.position[*q].distance_square(P.position[p]) <= eps2)
+          {
+            ms += P.mass[*q] * F.max_principal_stress[*q];
+            m += P.mass[*q];
+          }
+        // Onset needs the particle itself in tension, so that its modulus is known.
+        if (ms > f_t * m && eps_I > 0 && sig_I > 0)
+        {
+          P.onset_strain[p] = eps_I;
+          P.onset_stress[p] = sig_I;
+        }
+        continue;
+      }
+      const double h             = band_width > 0 ? band_width : grid_spacing;
+      const double strain_beyond = eps_I - P.onset_strain[p];
+      double chi_new             = 0;
+      if (paper_rule)
+        chi_new = 1 - law->traction_ratio(std::max(0.0, strain_beyond) * h);
+      else
+      {
+        const double M = P.onset_stress[p] / P.onset_strain[p];
+        if (1 / h <= f_t * law->max_slope() / M)
+        {
+          chi_new = 1; // beyond the snap-back limit: breaks at once
+          ++snapped;
+        }
+        else
+        {
+          const double w = opening(strain_beyond, h, M);
+          const double s = f_t * law->traction_ratio(w);
+          chi_new        = w >= w_c ? 1.0 : (sig_I > s ? 1 - s / sig_I : 0.0);
+        }
+      }
+      const double chi_old = P.damage[p];
+      const double chi     = std::min(1.0, std::max(chi_old, chi_new));
+      if (chi > chi_old)
+      {
+        // Secant damage: losing d chi of sigma : eps / 2 dissipates it.
+        P.dissipated[p] +=
+            (chi - chi_old) * P.initial_volume[p] * 0.5 * (P.stress[p] * P.strain[p]);
+        P.damage[p] = chi;
+      }
+      if (chi >= 1)
+        P.failed[p] = 1;
+    }
+    if (snapped)
+      snap_back_count += snapped;
+  }
+
+  std::vector<std::pair<std::string, double>> statistics() const override
+  {
+    return {{"snap_back_particles", double(snap_back_count.load())}};
+  }
+
+private:
+  /**
+   * Crack opening w for a band strain beyond onset: the band strain is the elastic
+   * change of the cohesive stress plus the opening spread over h,
+   * d eps = f_t (g(w) - 1) / M + w / h, increasing in w below the snap-back limit.
+   */
+  double opening(const double strain_beyond, const double h, const double M) const
+  {
+    if (strain_beyond <= 0)
+      return 0;
+    auto F = [&](const double w)
+    { return f_t * (law->traction_ratio(w) - 1) / M + w / h - strain_beyond; };
+    if (F(w_c) <= 0)
+      return w_c;
+    double lo = 0, hi = w_c;
+    for (int i = 0; i < 60; ++i)
+    {
+      const double mid       = 0.5 * (lo + hi);
+      (F(mid) > 0 ? hi : lo) = mid;
+    }
+    return 0.5 * (lo + hi);
+  }
+
+  double grid_spacing, eps = 0, f_t = 0, w_c = 0, band_width = 0;
+  bool paper_rule = false;
+  std::unique_ptr<SofteningLaw> law;
+  mutable std::atomic<unsigned long> snap_back_count{0};
+};
+
+/**
+ * Eigenerosion (Pandolfi & Ortiz 2012): a particle fails when the energy release
+ * G_p = eps (sum V_q W_q) / (sum V_q) over its epsilon-neighbourhood exceeds G_c;
+ * it keeps its mass, loses its stress, and its stored energy counts as dissipated.
+ */
+template <int dim>
+class Eigenerosion : public FractureModel<dim>
+{
+public:
+  Eigenerosion(ParameterHandler &prm, const FractureContext &c)
+  {
+    const double C_eps = prm.get_double("Epsilon factor");
+    input::require_range(C_eps, 0, 1e6, true, c.section + "/Epsilon factor");
+    eps = C_eps * c.grid_spacing;
+    G_c = prm.get_double("Fracture energy");
+    input::require_range(G_c, 0, 1e300, true, c.section + "/Fracture energy");
+  }
+
+  std::string name() const override { return "eigenerosion"; }
+  double epsilon() const override { return eps; }
+
+  void update(ParticleStore<dim> &P, const Neighbourhood<dim> &nb,
+              const FractureFields &F, const std::size_t begin, const std::size_t end,
+              const unsigned int material_id) const override
+  {
+    const double eps2 = eps * eps;
+    for (std::size_t p = begin; p < end; ++p)
+    {
+      if (P.material_id[p] != material_id || P.failed[p])
+        continue;
+      double vw = 0, v = 0;
+      for (auto q = nb.begin(p); q != nb.end(p); ++q)
+        if (P.position[*q].distance_square(P.position[p]) <= eps2)
+        {
+          vw += P.initial_volume[*q] * F.energy_density[*q];
+          v += P.initial_volume[*q];
+        }
+      if (eps * vw > G_c * v)
+      {
+        P.failed[p] = 1;
+        P.damage[p] = 1;
+        P.dissipated[p] += P.initial_volume[p] * F.energy_density[p];
+      }
+    }
+  }
+
+private:
+  double eps = 0, G_c = 0;
+};
+} // namespace fracture
+} // namespace lme_mpm
+
+using lme_mpm::fracture::Eigenerosion;
+using lme_mpm::fracture::Eigensoftening;
+LME_MPM_REGISTER_FRACTURE_MODEL(
+    Eigensoftening, "eigensoftening",
+    "strength onset on the neighbourhood-averaged max principal "
+    "stress, then cohesive softening through a band width.")
+LME_MPM_REGISTER_FRACTURE_MODEL(
+    Eigenerosion, "eigenerosion",
+    "a particle fails when its neighbourhood's energy release "
+    "rate exceeds G_c.")

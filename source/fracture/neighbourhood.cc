@@ -1,0 +1,123 @@
+#include <lme_mpm/base/parallel.h>
+#include <lme_mpm/fracture/neighbourhood.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace lme_mpm
+{
+template <int dim>
+void Neighbourhood<dim>::build(const std::vector<Point<dim>> &x, const double radius)
+{
+  search_radius       = radius;
+  const std::size_t n = x.size();
+  offsets.assign(n + 1, 0);
+  list.clear();
+  if (n == 0)
+    return;
+
+  // Cubes of side `radius` over the particles' bounding box.
+  Point<dim> lo = x[0], hi = x[0];
+  for (const auto &p : x)
+    for (unsigned int d = 0; d < dim; ++d)
+      lo[d] = std::min(lo[d], p[d]), hi[d] = std::max(hi[d], p[d]);
+  std::array<std::uint32_t, dim> n_bins;
+  std::size_t total = 1;
+  for (unsigned int d = 0; d < dim; ++d)
+  {
+    n_bins[d] = static_cast<std::uint32_t>(
+        std::min(1e6, std::floor((hi[d] - lo[d]) / radius)) + 1);
+    total *= n_bins[d];
+  }
+  auto bin_index = [&](const Point<dim> &p, std::array<std::uint32_t, dim> &ijk)
+  {
+    std::size_t b = 0, stride = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+    {
+      ijk[d] = std::min<std::uint32_t>(n_bins[d] - 1, (p[d] - lo[d]) / radius);
+      b += ijk[d] * stride;
+      stride *= n_bins[d];
+    }
+    return b;
+  };
+
+  // Counting sort of particle indices by cube (stable: rows come out sorted).
+  bin_of.resize(n);
+  bin_start.assign(total + 1, 0);
+  for (std::size_t p = 0; p < n; ++p)
+  {
+    std::array<std::uint32_t, dim> ijk;
+    bin_of[p] = bin_index(x[p], ijk);
+    ++bin_start[bin_of[p] + 1];
+  }
+  for (std::size_t b = 0; b < total; ++b)
+    bin_start[b + 1] += bin_start[b];
+  sorted.resize(n);
+  {
+    std::vector<std::uint32_t> next(bin_start.begin(), bin_start.end() - 1);
+    for (std::size_t p = 0; p < n; ++p)
+      sorted[next[bin_of[p]]++] = static_cast<std::uint32_t>(p);
+  }
+
+  const double r2 = radius * radius;
+  // Visits the neighbours of p in increasing index order of cubes; within a cube the
+  // indices ascend. f(q) is called for each q within the radius.
+  auto for_neighbours = [&](const std::size_t p, auto &&f)
+  {
+    std::array<std::uint32_t, dim> c;
+    bin_index(x[p], c);
+    std::array<int, dim> k;
+    k.fill(-1);
+    while (true)
+    {
+      bool inside   = true;
+      std::size_t b = 0, stride = 1;
+      for (unsigned int d = 0; d < dim; ++d)
+      {
+        const long j = long(c[d]) + k[d];
+        inside       = inside && j >= 0 && j < long(n_bins[d]);
+        b += std::size_t(std::max(0L, j)) * stride;
+        stride *= n_bins[d];
+      }
+      if (inside)
+        for (std::uint32_t s = bin_start[b]; s < bin_start[b + 1]; ++s)
+          if (x[sorted[s]].distance_square(x[p]) <= r2)
+            f(sorted[s]);
+      unsigned int d = 0;
+      while (d < dim && ++k[d] > 1)
+        k[d++] = -1;
+      if (d == dim)
+        break;
+    }
+  };
+
+  parallel::for_range(n,
+                      [&](const std::size_t b, const std::size_t e)
+                      {
+                        for (std::size_t p = b; p < e; ++p)
+                        {
+                          std::size_t c = 0;
+                          for_neighbours(p, [&](std::uint32_t) { ++c; });
+                          offsets[p + 1] = c;
+                        }
+                      });
+  for (std::size_t p = 0; p < n; ++p)
+    offsets[p + 1] += offsets[p];
+  list.resize(offsets[n]);
+  parallel::for_range(
+      n,
+      [&](const std::size_t b, const std::size_t e)
+      {
+        for (std::size_t p = b; p < e; ++p)
+        {
+          std::size_t k = offsets[p];
+          for_neighbours(p, [&](const std::uint32_t q) { list[k++] = q; });
+          std::sort(list.begin() + offsets[p], list.begin() + offsets[p + 1]);
+        }
+      });
+}
+
+template class Neighbourhood<2>;
+template class Neighbourhood<3>;
+} // namespace lme_mpm

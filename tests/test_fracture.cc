@@ -1,0 +1,257 @@
+// Fracture: neighbourhood search, softening laws, irreversibility, and the energy and
+// strength checks on a bar pulled apart in tension (prm/tension_bar.prm).
+#include <deal.II/base/parameter_handler.h>
+
+#include <gtest/gtest.h>
+
+#include <lme_mpm/fracture/fracture_model.h>
+#include <lme_mpm/fracture/neighbourhood.h>
+#include <lme_mpm/fracture/softening_law.h>
+
+#include "test_helpers.h"
+
+#include <chrono>
+#include <fstream>
+#include <random>
+
+using namespace lme_mpm;
+
+namespace
+{
+template <int dim>
+void check_neighbourhood_against_brute_force(const unsigned int n, const double radius)
+{
+  std::mt19937 rng(11 + dim);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point<dim>> x(n);
+  for (auto &p : x)
+    for (unsigned int d = 0; d < dim; ++d)
+      p[d] = u(rng);
+  Neighbourhood<dim> nb;
+  nb.build(x, radius);
+  ASSERT_EQ(nb.size(), n);
+  for (unsigned int p = 0; p < n; ++p)
+  {
+    std::vector<std::uint32_t> brute;
+    for (unsigned int q = 0; q < n; ++q)
+      if (x[p].distance(x[q]) <= radius)
+        brute.push_back(q);
+    ASSERT_EQ(std::vector<std::uint32_t>(nb.begin(p), nb.end(p)), brute)
+        << "particle " << p;
+  }
+}
+
+/// Runs the tension bar one cell high at cell size h; returns history columns.
+struct BarResult
+{
+  double peak_stress = 0, dissipated_per_area = 0, failed = 0;
+};
+
+BarResult run_bar(const double h, std::vector<std::string> extra)
+{
+  const std::string x1 = std::to_string(0.05 + h), hs = std::to_string(h);
+  std::vector<std::string> o = {"Grid/Cell size=" + hs, "Grid/Upper corner=0.1, " + hs,
+                                "Body 1/Shape=rectangle(0.05, 0, " + x1 + ", " + hs + ")",
+                                "Body 2/Shape=rectangle(0, 0, 0.1, " + hs + ")",
+                                "Body 2/Holes=rectangle(0.05, 0, " + x1 + ", " + hs +
+                                    ")"};
+  o.insert(o.end(), extra.begin(), extra.end());
+  const std::string dir = lme_mpm_test::scratch("bar_" + hs);
+  o.push_back("Output/Directory=" + dir);
+  o.push_back("Output/Verbosity=0");
+  std::ostringstream quiet;
+  const auto s = run_parameter_file(lme_mpm_test::scene("tension_bar.prm"), o, quiet);
+
+  std::ifstream in(dir + "/history.csv");
+  std::string line;
+  std::getline(in, line);
+  const std::vector<std::string> names = lme_mpm::input::split(line, ',');
+  const auto col                       = [&](const std::string &n)
+  { return std::find(names.begin(), names.end(), n) - names.begin(); };
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line))
+    rows.push_back(lme_mpm::input::parse_doubles(line, "history.csv"));
+  const auto i_force = col("force_right_x"), i_diss = col("dissipated_energy");
+  const double area = 0.005 * h, diss = rows.back()[i_diss];
+  BarResult r;
+  // The peak of the loading branch: up to the row where the band has dissipated 90 %
+  // of its energy (after it the separated halves ring).
+  for (const auto &v : rows)
+  {
+    r.peak_stress = std::max(r.peak_stress, v[i_force] / area);
+    if (v[i_diss] >= 0.9 * diss)
+      break;
+  }
+  r.dissipated_per_area = diss / area;
+  r.failed              = s.at("failed_particles");
+  return r;
+}
+} // namespace
+
+TEST(Neighbourhood, AgreesWithBruteForce2D)
+{
+  check_neighbourhood_against_brute_force<2>(3000, 0.04);
+}
+TEST(Neighbourhood, AgreesWithBruteForce3D)
+{
+  check_neighbourhood_against_brute_force<3>(2000, 0.12);
+}
+
+TEST(Neighbourhood, BuildTimePerParticle)
+{
+  // 2D, 4 particles per cell of 1 mm, eps = 2 mm (C_eps = 2): about 50 neighbours each.
+  std::vector<Point<2>> x;
+  for (unsigned int i = 0; i < 400; ++i)
+    for (unsigned int j = 0; j < 250; ++j)
+      x.emplace_back(0.5e-3 * i + 0.25e-3, 0.5e-3 * j + 0.25e-3);
+  Neighbourhood<2> nb;
+  nb.build(x, 2e-3);
+  const auto start = std::chrono::steady_clock::now();
+  for (int k = 0; k < 5; ++k)
+    nb.build(x, 2e-3);
+  const double ns =
+      std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start)
+          .count() /
+      (5.0 * x.size());
+  std::cout << "neighbourhood build: " << ns << " ns per particle, "
+            << double(nb.n_pairs()) / x.size() << " neighbours per particle" << std::endl;
+  EXPECT_GT(nb.n_pairs(), 40 * x.size());
+}
+
+TEST(SofteningLaws, AreaEqualsFractureEnergy)
+{
+  for (const char *name : {"linear", "bilinear", "exponential"})
+  {
+    SofteningContext c;
+    c.tensile_strength = 3e6;
+    c.fracture_energy  = 100;
+    ParameterHandler prm;
+    const auto law   = SofteningLawRegistry::instance().create(name, prm, c);
+    const double w_c = law->critical_opening();
+    EXPECT_DOUBLE_EQ(law->traction_ratio(0), 1.0) << name;
+    EXPECT_EQ(law->traction_ratio(w_c), 0.0) << name;
+    double area = 0, previous = 1;
+    const unsigned int n = 200000;
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      const double g = law->traction_ratio((i + 0.5) * w_c / n);
+      EXPECT_LE(g, previous) << name;
+      previous = g;
+      area += g * w_c / n;
+    }
+    // Exponential: the tail beyond g = 1e-3 is cut (0.1 % of G_F).
+    const double expected = std::string(name) == "exponential" ? 0.999 : 1.0;
+    EXPECT_NEAR(area * c.tensile_strength / c.fracture_energy, expected, 1e-4) << name;
+  }
+}
+
+TEST(Eigensoftening, UnloadingDoesNotHeal)
+{
+  ParameterHandler prm;
+  declare_fracture_parameters(prm);
+  prm.set("Model", "eigensoftening");
+  prm.set("Tensile strength", "3e6");
+  prm.set("Fracture energy", "50");
+  prm.set("Band width", "0.01");
+  FractureContext fc;
+  fc.grid_spacing   = 0.01;
+  fc.p_wave_modulus = 30e9;
+  fc.section        = "test";
+  const auto model =
+      FractureModelRegistry<2>::instance().create("eigensoftening", prm, fc);
+
+  ParticleStore<2> P;
+  P.add(Point<2>(0, 0), 1.0, 1.0, 0, 0);
+  Neighbourhood<2> nb;
+  nb.build(P.position, model->epsilon());
+  FractureFields F;
+  auto load = [&](const double strain)
+  {
+    P.strain[0]            = SymmetricTensor<2, 2>();
+    P.strain[0][0][0]      = strain;
+    P.stress[0]            = 30e9 * P.strain[0];
+    F.max_principal_stress = {P.stress[0][0][0]};
+    F.energy_density       = {0.5 * (P.stress[0] * P.strain[0])};
+    model->update(P, nb, F, 0, 1, 0);
+    return P.damage[0];
+  };
+  EXPECT_EQ(load(0.9e-4), 0.0);
+  EXPECT_EQ(P.onset_strain[0], 0.0); // below f_t: no onset
+  load(1.01e-4);                     // onset
+  EXPECT_GT(P.onset_strain[0], 0.0);
+  const double d1 = load(1.2e-4);
+  EXPECT_GT(d1, 0.0);
+  EXPECT_LT(d1, 1.0);
+  // The effective stress follows the cohesive law: (1 - chi) sigma = f_t g(w) < f_t.
+  EXPECT_LT((1 - d1) * 30e9 * 1.2e-4, 3.03e6);
+  const double d_unload = load(0.5e-4); // unloading keeps the damage
+  EXPECT_EQ(d_unload, d1);
+  const double diss = P.dissipated[0];
+  EXPECT_GT(diss, 0);
+  const double d2 = load(1.5e-4); // reloading past the old strain damages further
+  EXPECT_GT(d2, d1);
+  EXPECT_GT(P.dissipated[0], diss);
+  load(1e-2); // far beyond w_c: fully failed
+  EXPECT_EQ(P.damage[0], 1.0);
+  EXPECT_EQ(P.failed[0], 1);
+}
+
+TEST(TensionBar, EigensofteningDissipatesFractureEnergyAtThreeResolutions)
+{
+  // Acceptance: per unit crack area the dissipated energy is G_F = 50 N/m within 5 %,
+  // the peak stress f_t = 3 MPa within 5 %, for linear and exponential softening.
+  for (const std::string law : {"linear", "exponential"})
+    for (const double h : {0.005, 0.0025, 0.00125})
+    {
+      const auto r =
+          run_bar(h, {"Material 1/Fracture/Softening law=" + law,
+                      "Material 2/Fracture/Softening law=" + law,
+                      law == "linear" ? "Time/End time=0.005" : "Time/End time=0.0125"});
+      std::cout << law << " h = " << h << ": peak " << r.peak_stress / 1e6
+                << " MPa, dissipated " << r.dissipated_per_area << " J/m^2" << std::endl;
+      EXPECT_NEAR(r.dissipated_per_area / 50.0, 1.0, 0.05) << law << " h " << h;
+      EXPECT_NEAR(r.peak_stress / 3e6, 1.0, 0.05) << law << " h " << h;
+      EXPECT_GT(r.failed, 0) << law << " h " << h;
+    }
+}
+
+TEST(TensionBar, FixedBandWidthIsMeshDependent)
+{
+  // Holding h_eps = 10 mm while the crack localises in one cell of size h: the band
+  // dissipates about G_F h / h_eps, so the energy is not objective.
+  const auto coarse =
+      run_bar(0.005, {"Material 1/Fracture/Band width=0.01",
+                      "Material 2/Fracture/Band width=0.01", "Time/End time=0.008"});
+  const auto fine =
+      run_bar(0.0025, {"Material 1/Fracture/Band width=0.01",
+                       "Material 2/Fracture/Band width=0.01", "Time/End time=0.008"});
+  std::cout << "h_eps fixed at 10 mm: dissipated " << coarse.dissipated_per_area
+            << " (h = 5 mm), " << fine.dissipated_per_area << " (h = 2.5 mm) J/m^2"
+            << std::endl;
+  EXPECT_NEAR(coarse.dissipated_per_area, 50.0 * 0.5, 2.5);
+  EXPECT_NEAR(fine.dissipated_per_area, 50.0 * 0.25, 2.5);
+}
+
+TEST(TensionBar, EigenerosionDissipatesCriticalEnergyRelease)
+{
+  // Eroding a one-cell band (width h) releases h W per unit area and G_p = eps W, so
+  // with eps = h (C_eps = 1) the energy per unit area is G_c. The rest of the bar is
+  // 100x tougher: at failure it stores about L / eps times G_c, which rings through it.
+  for (const double h : {0.005, 0.0025})
+  {
+    const auto r = run_bar(h, {"Material 1/Fracture/Model=eigenerosion",
+                               "Material 2/Fracture/Model=eigenerosion",
+                               "Material 2/Fracture/Fracture energy=5000",
+                               "Material 1/Fracture/Epsilon factor=1",
+                               "Material 2/Fracture/Epsilon factor=1",
+                               "Boundary conditions/Constraint 2/Velocity/Function "
+                               "constants=v0=0.1, tr=2e-4",
+                               "Time/End time=0.0015"});
+    std::cout << "eigenerosion h = " << h << ": peak " << r.peak_stress / 1e6
+              << " MPa (Griffith-type sqrt(2 E G_c / h) = "
+              << std::sqrt(2 * 30e9 * 50 / h) / 1e6 << "), dissipated "
+              << r.dissipated_per_area << " J/m^2" << std::endl;
+    EXPECT_NEAR(r.dissipated_per_area / 50.0, 1.0, 0.10) << h;
+    EXPECT_NEAR(r.peak_stress / std::sqrt(2 * 30e9 * 50 / h), 1.0, 0.05) << h;
+  }
+}
