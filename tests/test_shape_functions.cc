@@ -1,0 +1,1077 @@
+// Unit tests of the shape-function plug-ins (linear, ugimp, bspline, lme): the
+// consistency conditions every MPM transfer relies on, gradients against finite
+// differences, LME-specific behaviour (supports, Newton iterations, warm starts) and
+// the error paths.
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <lme_mpm/shape_functions/shape_function.h>
+#include <lme_mpm/shape_functions/tensor_product.h> // point_to_string
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+#include <thread>
+
+using namespace lme_mpm;
+
+namespace
+{
+using Settings = std::map<std::string, std::string>;
+
+const std::vector<double> lme_gammas = {0.8, 1.8, 3.5, 6.8, 10};
+
+template <int dim>
+std::unique_ptr<BackgroundGrid<dim>> uniform_grid(const double h,
+                                                  const unsigned int cells)
+{
+  auto grid = std::make_unique<BackgroundGrid<dim>>();
+  std::array<std::vector<double>, dim> steps;
+  Point<dim> lower;
+  for (unsigned int d = 0; d < dim; ++d)
+  {
+    steps[d].assign(cells, h);
+    lower[d] = -0.3 + 0.1 * d; // off the origin, so nothing is accidentally exact
+  }
+  grid->reinit(lower, steps);
+  return grid;
+}
+
+/**
+ * Strongly graded: spacings from 0.05 to 0.11, so some cells have an aspect ratio of
+ * 2.2. LME takes h as the cell's smallest spacing, and a particle needs a node on
+ * each side along every direction within R = h sqrt(-ln TOL / gamma); in a cell with
+ * spacings s_d that is R^2 >= max_d (s_d^2 + sum_{e != d} (s_e / 2)^2), which holds
+ * here for gamma <= 1.8 only (see mildly_graded_grid for larger gamma).
+ */
+template <int dim>
+std::unique_ptr<BackgroundGrid<dim>> graded_grid()
+{
+  auto grid = std::make_unique<BackgroundGrid<dim>>();
+  std::array<std::vector<double>, dim> steps;
+  steps[0] = {0.1, 0.1, 0.1, 0.08, 0.065, 0.05, 0.05, 0.05, 0.065, 0.08, 0.1, 0.11, 0.11};
+  steps[1] = {0.05, 0.06, 0.07, 0.08, 0.09, 0.1, 0.11, 0.11, 0.1, 0.09, 0.08, 0.07};
+  if constexpr (dim == 3)
+    steps[2] = {0.11, 0.1, 0.09, 0.08, 0.07, 0.06, 0.05, 0.05, 0.06, 0.07, 0.08};
+  grid->reinit(Point<dim>(), steps);
+  return grid;
+}
+
+/// Graded with aspect ratios up to 1.05, which every tested gamma tolerates.
+template <int dim>
+std::unique_ptr<BackgroundGrid<dim>> mildly_graded_grid()
+{
+  auto grid = std::make_unique<BackgroundGrid<dim>>();
+  std::array<std::vector<double>, dim> steps;
+  for (unsigned int d = 0; d < dim; ++d)
+    for (unsigned int i = 0; i < 11; ++i)
+      steps[d].push_back(0.1 - 0.005 * std::abs(std::sin(1.3 * i + d)));
+  Point<dim> lower;
+  for (unsigned int d = 0; d < dim; ++d)
+    lower[d] = -0.2 + 0.3 * d;
+  grid->reinit(lower, steps);
+  return grid;
+}
+
+template <int dim>
+std::unique_ptr<ShapeFunction<dim>>
+make(const std::string &type, const BackgroundGrid<dim> &grid,
+     const Settings &settings = {}, const double thickness = 1.0)
+{
+  ParameterHandler prm;
+  prm.enter_subsection("Shape functions");
+  ShapeFunctionRegistry<dim>::instance().declare_all(prm);
+  for (const auto &[key, value] : settings)
+    prm.set(key, value);
+  ShapeFunctionContext<dim> context;
+  context.grid      = &grid;
+  context.thickness = thickness;
+  auto sf           = ShapeFunctionRegistry<dim>::instance().create(type, prm, context);
+  prm.leave_subsection();
+  return sf;
+}
+
+/**
+ * LME entries. In 3D a particle near the centre of a cell face has its nearest nodes
+ * beyond the face at distance sqrt(1.5) h, out of reach of the default cut-off 1e-6
+ * for gamma > 9.2 (the particle would not be inside its nodes' hull, an error); the
+ * 3D gamma = 10 cases therefore use the cut-off 1e-10 (R = 1.52 h).
+ */
+template <int dim>
+Settings lme_settings(const double gamma, const double newton_tol = 1e-12)
+{
+  std::ostringstream g, t;
+  g.precision(17), t.precision(17);
+  g << gamma, t << newton_tol;
+  Settings s = {{"LME gamma", g.str()}, {"LME Newton tolerance", t.str()}};
+  if (dim == 3 && gamma > 9.2)
+    s["LME tolerance"] = "1e-10";
+  return s;
+}
+
+/// Cell spacings of the cell holding x.
+template <int dim>
+std::array<double, dim> cell_spacings(const BackgroundGrid<dim> &grid,
+                                      const Point<dim> &x)
+{
+  std::array<unsigned int, dim> c;
+  EXPECT_TRUE(grid.locate(x, c));
+  std::array<double, dim> h;
+  for (unsigned int d = 0; d < dim; ++d)
+    h[d] = grid.spacing(d, c[d]);
+  return h;
+}
+
+/// The LME (and reporting) length: the smallest spacing of the cell holding x.
+template <int dim>
+double local_h(const BackgroundGrid<dim> &grid, const Point<dim> &x)
+{
+  const auto h = cell_spacings(grid, x);
+  return *std::min_element(h.begin(), h.end());
+}
+
+/// Volume of a particle of half-width lp (2D volumes include the thickness).
+template <int dim>
+double volume_for_half_width(const double lp, const double thickness = 1.0)
+{
+  return dim == 2 ? 4 * lp * lp * thickness : 8 * lp * lp * lp;
+}
+
+/// A particle as seeded 2^dim per cell: half-width a quarter of the cell.
+template <int dim>
+void add_particle(ParticleStore<dim> &ps, const BackgroundGrid<dim> &grid,
+                  const Point<dim> &x)
+{
+  const auto h = cell_spacings(grid, x);
+  double hv    = 1;
+  for (unsigned int d = 0; d < dim; ++d)
+    hv *= h[d];
+  ps.add(x, 1.0, hv / (1u << dim), 0, 0);
+}
+
+template <int dim>
+Connectivity<dim> evaluate(const ShapeFunction<dim> &sf, ParticleStore<dim> &ps)
+{
+  Connectivity<dim> conn;
+  conn.resize(ps.size(), sf.max_nodes_per_particle());
+  sf.compute(ps, 0, ps.size(), conn);
+  return conn;
+}
+
+double statistic(const std::vector<std::pair<std::string, double>> &stats,
+                 const std::string &name)
+{
+  for (const auto &s : stats)
+    if (s.first == name)
+      return s.second;
+  ADD_FAILURE() << "no statistic " << name;
+  return 0;
+}
+
+/// Uniform random points in the grid shrunk by margin (times the local h, per side).
+template <int dim>
+Point<dim> random_point(const BackgroundGrid<dim> &grid, std::mt19937 &rng,
+                        const double margin = 0)
+{
+  Point<dim> x;
+  for (unsigned int d = 0; d < dim; ++d)
+  {
+    const double lo = grid.lower_corner()[d] + margin,
+                 hi = grid.upper_corner()[d] - margin;
+    x[d]            = std::uniform_real_distribution<double>(lo, hi)(rng);
+  }
+  return x;
+}
+
+/**
+ * Checks one particle's row: nodes increasing, N >= 0, partition of unity, linear
+ * reproduction (sum N_I (x_I - x) = 0, which with PU is sum N_I x_I = x) and the
+ * gradient conditions sum grad N_I = 0, sum grad N_I (x) (x_I - x) = identity.
+ */
+template <int dim>
+void expect_consistent(const Connectivity<dim> &conn, const BackgroundGrid<dim> &grid,
+                       const Point<dim> &x, const std::size_t p, const std::string &what)
+{
+  SCOPED_TRACE(what + " at " + point_to_string(x));
+  const double h       = local_h(grid, x);
+  const unsigned int n = conn.n_nodes[p];
+  ASSERT_GT(n, 0u);
+  ASSERT_LE(n, conn.stride);
+  double pu = 0;
+  Tensor<1, dim> first, sum_grad;
+  Tensor<2, dim> grad_first;
+  for (unsigned int k = 0; k < n; ++k)
+  {
+    const std::size_t s     = p * conn.stride + k;
+    const unsigned int node = conn.nodes[s];
+    ASSERT_LT(node, grid.n_nodes());
+    if (k > 0)
+    {
+      EXPECT_LT(conn.nodes[s - 1], node);
+    }
+    EXPECT_GE(conn.N[s], 0.0);
+    const Tensor<1, dim> dx = grid.node_point(node) - x;
+    pu += conn.N[s];
+    first += conn.N[s] * dx;
+    sum_grad += conn.grad_N[s];
+    grad_first += outer_product(conn.grad_N[s], dx);
+  }
+  EXPECT_NEAR(pu, 1.0, 1e-12);
+  EXPECT_LE(first.norm() / h, 1e-12);
+  EXPECT_LE(sum_grad.norm() * h, 1e-10);
+  const Tensor<2, dim> identity = unit_symmetric_tensor<dim>();
+  EXPECT_LE((grad_first - identity).norm(), 1e-10);
+}
+
+/// Random particles (2^dim per cell volumes) with every check of expect_consistent.
+template <int dim>
+void check_random_particles(const std::string &type, const BackgroundGrid<dim> &grid,
+                            const Settings &settings, const unsigned int n_particles,
+                            const unsigned int seed)
+{
+  auto sf = make<dim>(type, grid, settings);
+  std::mt19937 rng(seed);
+  ParticleStore<dim> ps;
+  while (ps.size() < n_particles)
+  {
+    const Point<dim> x = random_point(grid, rng);
+    // uGIMP: keep the particle's box in the grid (it is an error otherwise).
+    const auto h = cell_spacings(grid, x);
+    double hv    = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      hv *= h[d];
+    const double lp = 0.5 * std::pow(hv / (1u << dim), 1.0 / dim);
+    bool in         = true;
+    for (unsigned int d = 0; d < dim; ++d)
+      in = in && x[d] - lp >= grid.lower_corner()[d] &&
+           x[d] + lp <= grid.upper_corner()[d];
+    if (type == "ugimp" && !in)
+      continue;
+    add_particle(ps, grid, x);
+  }
+  const auto conn = evaluate(*sf, ps);
+  for (std::size_t p = 0; p < ps.size(); ++p)
+    expect_consistent(conn, grid, ps.position[p], p, type);
+}
+
+/**
+ * Gradients against central differences with step delta * h, each evaluation from a
+ * fresh particle (an LME cold start). Points where a node enters or leaves the
+ * support between x - delta and x + delta, or where a uGIMP box edge sits on a grid
+ * line (the weights are only C1 there), are redrawn.
+ */
+template <int dim>
+void check_gradients(const std::string &type, const BackgroundGrid<dim> &grid,
+                     const Settings &settings, const unsigned int n_points,
+                     const unsigned int seed)
+{
+  auto sf = make<dim>(type, grid, settings);
+  std::mt19937 rng(seed);
+  const double delta_rel = 1e-6;
+  unsigned int tested = 0, attempts = 0;
+  while (tested < n_points)
+  {
+    ASSERT_LT(++attempts, 20 * n_points) << "could not find smooth test points";
+    const Point<dim> x = random_point(grid, rng, 0.5 * grid.min_spacing());
+    const double h     = local_h(grid, x);
+    const double delta = delta_rel * h;
+
+    ParticleStore<dim> base;
+    add_particle(base, grid, x);
+    const double lp = 0.5 * std::pow(base.initial_volume[0], 1.0 / dim);
+    if (type == "ugimp")
+    {
+      bool near_line = false;
+      for (unsigned int d = 0; d < dim; ++d)
+        for (const double c : grid.coordinates(d))
+          near_line = near_line || std::abs(x[d] - lp - c) < 4 * delta ||
+                      std::abs(x[d] + lp - c) < 4 * delta;
+      if (near_line)
+        continue;
+    }
+    const auto conn      = evaluate(*sf, base);
+    const unsigned int n = conn.n_nodes[0];
+
+    bool same_support = true;
+    std::array<std::vector<double>, 2 * dim> shifted;
+    for (unsigned int d = 0; d < dim && same_support; ++d)
+      for (unsigned int side = 0; side < 2; ++side)
+      {
+        ParticleStore<dim> ps;
+        Point<dim> xs = x;
+        xs[d] += (side == 0 ? -delta : delta);
+        ps.add(xs, 1.0, base.initial_volume[0], 0, 0);
+        const auto c = evaluate(*sf, ps);
+        if (c.n_nodes[0] != n ||
+            !std::equal(c.nodes.begin(), c.nodes.begin() + n, conn.nodes.begin()))
+        {
+          same_support = false;
+          break;
+        }
+        shifted[2 * d + side].assign(c.N.begin(), c.N.begin() + n);
+      }
+    if (!same_support)
+      continue;
+
+    SCOPED_TRACE(type + " gradient at " + point_to_string(x));
+    for (unsigned int k = 0; k < n; ++k)
+      for (unsigned int d = 0; d < dim; ++d)
+      {
+        const double fd = (shifted[2 * d + 1][k] - shifted[2 * d][k]) / (2 * delta);
+        EXPECT_NEAR(conn.grad_N[k][d] * h, fd * h, 1e-7)
+            << "node " << conn.nodes[k] << ", direction " << d;
+      }
+    ++tested;
+  }
+}
+
+/// Newton iterations of the LME solves done by the last compute() calls.
+template <int dim>
+double lme_iterations(const ShapeFunction<dim> &sf)
+{
+  return statistic(sf.statistics(), "lme_newton_iterations");
+}
+
+/**
+ * Newton iterations per particle (read from the statistics around single-particle
+ * compute() calls). Cold starts: anywhere in the grid down to 1e-3 h from a face.
+ * Warm starts after a move of 1e-3 h: at least 0.05 h from the faces, since next to
+ * a face lambda grows like -ln(distance) and a move that is a large fraction of the
+ * distance is not a small perturbation of the solve.
+ *
+ * Warm starts take at most 3 steps up to gamma = 6.8 (none of 20000 random particles
+ * in 2D or 3D needed more). At gamma = 10, particles within ~0.01 h of a grid line
+ * have a nearly singular J, lambda changes by O(1) over the move, and about 1 in 1000
+ * needs a fourth step; that rate is what is checked there.
+ */
+template <int dim>
+void check_newton_iterations(const double gamma, const unsigned int seed)
+{
+  const double h = 0.1;
+  auto grid      = uniform_grid<dim>(h, dim == 2 ? 12 : 8);
+  auto sf        = make<dim>("lme", *grid, lme_settings<dim>(gamma));
+  std::mt19937 rng(seed);
+  ParticleStore<dim> anywhere, inner;
+  for (unsigned int i = 0; i < 2000; ++i)
+  {
+    add_particle(anywhere, *grid, random_point(*grid, rng, 1e-3 * h));
+    add_particle(inner, *grid, random_point(*grid, rng, 0.05 * h));
+  }
+  // Largest iteration count, and how many particles needed more than 3.
+  const auto iterations = [&](ParticleStore<dim> &ps)
+  {
+    Connectivity<dim> conn;
+    conn.resize(ps.size(), sf->max_nodes_per_particle());
+    unsigned int most = 0, over_3 = 0;
+    for (std::size_t p = 0; p < ps.size(); ++p)
+    {
+      const double before = lme_iterations(*sf);
+      sf->compute(ps, p, p + 1, conn);
+      const unsigned int used = lme_iterations(*sf) - before;
+      most                    = std::max(most, used);
+      over_3 += (used > 3);
+      if (p % 20 == 0)
+        expect_consistent(conn, *grid, ps.position[p], p, "lme");
+    }
+    return std::make_pair(most, over_3);
+  };
+
+  const unsigned int cold_max = iterations(anywhere).first;
+  EXPECT_LE(cold_max, 8u);
+  EXPECT_GE(cold_max, 2u); // a cold start is not a converged one
+  EXPECT_LE(statistic(sf->statistics(), "lme_max_newton_iterations"), 8.0);
+
+  iterations(inner);
+  std::normal_distribution<double> normal;
+  for (std::size_t p = 0; p < inner.size(); ++p)
+  {
+    Tensor<1, dim> dir;
+    for (unsigned int d = 0; d < dim; ++d)
+      dir[d] = normal(rng);
+    inner.position[p] += (1e-3 * h / dir.norm()) * dir;
+  }
+  const auto [warm_max, warm_over_3] = iterations(inner);
+  EXPECT_GE(warm_max, 1u); // the move is not lost in the tolerance
+  if (gamma <= 6.8)
+  {
+    EXPECT_LE(warm_max, 3u);
+  }
+  else
+  {
+    EXPECT_LE(warm_max, 4u);
+    EXPECT_LE(warm_over_3, inner.size() / 200);
+  }
+  EXPECT_EQ(statistic(sf->statistics(), "lme_solves"), 3.0 * anywhere.size());
+}
+
+/// Nodes within R = h sqrt(-ln(TOL)/gamma) by brute force over the whole grid.
+template <int dim>
+std::vector<unsigned int> nodes_in_radius(const BackgroundGrid<dim> &grid,
+                                          const Point<dim> &x, const double gamma,
+                                          const double tol = 1e-6)
+{
+  const double R = local_h(grid, x) * std::sqrt(-std::log(tol) / gamma);
+  std::vector<unsigned int> nodes;
+  for (unsigned int n = 0; n < grid.n_nodes(); ++n)
+    if (grid.node_point(n).distance(x) <= R)
+      nodes.push_back(n);
+  return nodes;
+}
+
+/// LME candidates anywhere (boundaries, graded cells) are exactly the nodes within R.
+template <int dim>
+void check_support_is_ball(const BackgroundGrid<dim> &grid, const double gamma,
+                           const unsigned int seed)
+{
+  std::mt19937 rng(seed);
+  for (const bool wide : {false, true})
+  {
+    Settings s = lme_settings<dim>(gamma);
+    if (wide)
+      s["LME tolerance"] = "1e-12";
+    const double tol = s.count("LME tolerance") ? std::stod(s["LME tolerance"]) : 1e-6;
+    auto sf          = make<dim>("lme", grid, s);
+    ParticleStore<dim> ps;
+    for (unsigned int i = 0; i < 30; ++i)
+      add_particle(ps, grid, random_point(grid, rng, 1e-3 * grid.min_spacing()));
+    const auto conn = evaluate(*sf, ps);
+    for (std::size_t p = 0; p < ps.size(); ++p)
+    {
+      const auto expected = nodes_in_radius(grid, ps.position[p], gamma, tol);
+      ASSERT_EQ(conn.n_nodes[p], expected.size()) << "tolerance " << tol;
+      EXPECT_TRUE(std::equal(expected.begin(), expected.end(),
+                             conn.nodes.begin() + p * conn.stride));
+      EXPECT_LE(conn.n_nodes[p], sf->max_nodes_per_particle());
+    }
+  }
+}
+
+template <int dim>
+Point<dim> cell_centre(const BackgroundGrid<dim> &grid,
+                       const std::array<unsigned int, dim> &c)
+{
+  Point<dim> x;
+  for (unsigned int d = 0; d < dim; ++d)
+    x[d] = 0.5 * (grid.coordinates(d)[c[d]] + grid.coordinates(d)[c[d] + 1]);
+  return x;
+}
+
+const std::vector<std::string> all_types = {"linear", "ugimp", "bspline", "lme"};
+} // namespace
+
+TEST(ShapeFunctions, RegistryHasAllFamilies)
+{
+  auto g2 = uniform_grid<2>(0.1, 6);
+  auto g3 = uniform_grid<3>(0.1, 6);
+  for (const auto &type : all_types)
+  {
+    EXPECT_TRUE(ShapeFunctionRegistry<2>::instance().contains(type)) << type;
+    EXPECT_TRUE(ShapeFunctionRegistry<3>::instance().contains(type)) << type;
+    EXPECT_EQ(make<2>(type, *g2)->name(), type);
+    EXPECT_EQ(make<3>(type, *g3)->name(), type);
+  }
+}
+
+TEST(ShapeFunctions, LmeParametersAreDeclaredWithDefaults)
+{
+  ParameterHandler prm;
+  prm.enter_subsection("Shape functions");
+  ShapeFunctionRegistry<2>::instance().declare_all(prm);
+  EXPECT_DOUBLE_EQ(prm.get_double("LME gamma"), 1.8);
+  EXPECT_DOUBLE_EQ(prm.get_double("LME tolerance"), 1e-6);
+  EXPECT_DOUBLE_EQ(prm.get_double("LME Newton tolerance"), 1e-12);
+  EXPECT_EQ(prm.get_integer("LME maximum iterations"), 50);
+  EXPECT_ANY_THROW(prm.set("LME gamma", "200"));
+  EXPECT_ANY_THROW(prm.set("LME maximum iterations", "0"));
+  prm.leave_subsection();
+}
+
+TEST(ShapeFunctions, ConsistencyUniform2D)
+{
+  auto grid = uniform_grid<2>(0.1, 12);
+  for (const std::string type : {"linear", "ugimp", "bspline"})
+    check_random_particles<2>(type, *grid, {}, 300, 1);
+  for (const double gamma : lme_gammas)
+    check_random_particles<2>("lme", *grid, lme_settings<2>(gamma), 300, 2);
+}
+
+TEST(ShapeFunctions, ConsistencyUniform3D)
+{
+  auto grid = uniform_grid<3>(0.1, 10);
+  for (const std::string type : {"linear", "ugimp", "bspline"})
+    check_random_particles<3>(type, *grid, {}, 200, 3);
+  for (const double gamma : lme_gammas)
+    check_random_particles<3>("lme", *grid, lme_settings<3>(gamma), 100, 4);
+}
+
+/// LME on graded grids: every gamma on the mild grid, gamma <= 1.8 on the strong one.
+template <int dim, class Check>
+void for_lme_graded_cases(const Check &check)
+{
+  auto strong = graded_grid<dim>();
+  auto mild   = mildly_graded_grid<dim>();
+  EXPECT_FALSE(strong->is_uniform(0) || mild->is_uniform(0));
+  for (const double gamma : lme_gammas)
+  {
+    SCOPED_TRACE("gamma " + std::to_string(gamma));
+    check(*mild, gamma);
+    if (gamma <= 1.8)
+      check(*strong, gamma);
+  }
+}
+
+TEST(ShapeFunctions, ConsistencyGraded2D)
+{
+  auto grid = graded_grid<2>();
+  for (const std::string type : {"linear", "ugimp"})
+    check_random_particles<2>(type, *grid, {}, 300, 5);
+  for_lme_graded_cases<2>(
+      [](const BackgroundGrid<2> &g, const double gamma)
+      { check_random_particles<2>("lme", g, lme_settings<2>(gamma), 300, 6); });
+}
+
+TEST(ShapeFunctions, ConsistencyGraded3D)
+{
+  auto grid = graded_grid<3>();
+  for (const std::string type : {"linear", "ugimp"})
+    check_random_particles<3>(type, *grid, {}, 200, 7);
+  for_lme_graded_cases<3>(
+      [](const BackgroundGrid<3> &g, const double gamma)
+      { check_random_particles<3>("lme", g, lme_settings<3>(gamma), 100, 8); });
+}
+
+TEST(ShapeFunctions, GradientsMatchFiniteDifferences2D)
+{
+  auto uniform = uniform_grid<2>(0.1, 12);
+  auto graded  = graded_grid<2>();
+  for (const std::string type : {"linear", "ugimp", "bspline"})
+    check_gradients<2>(type, *uniform, {}, 40, 11);
+  for (const std::string type : {"linear", "ugimp"})
+    check_gradients<2>(type, *graded, {}, 40, 12);
+  // A tighter Newton tolerance: the multiplier's error enters the differences / delta.
+  for (const double gamma : lme_gammas)
+    check_gradients<2>("lme", *uniform, lme_settings<2>(gamma, 1e-14), 20, 13);
+  for_lme_graded_cases<2>(
+      [](const BackgroundGrid<2> &g, const double gamma)
+      { check_gradients<2>("lme", g, lme_settings<2>(gamma, 1e-14), 20, 14); });
+}
+
+TEST(ShapeFunctions, GradientsMatchFiniteDifferences3D)
+{
+  auto uniform = uniform_grid<3>(0.1, 8);
+  auto graded  = graded_grid<3>();
+  for (const std::string type : {"linear", "ugimp", "bspline"})
+    check_gradients<3>(type, *uniform, {}, 20, 21);
+  for (const std::string type : {"linear", "ugimp"})
+    check_gradients<3>(type, *graded, {}, 20, 22);
+  for (const double gamma : lme_gammas)
+    check_gradients<3>("lme", *uniform, lme_settings<3>(gamma, 1e-14), 10, 23);
+  for_lme_graded_cases<3>(
+      [](const BackgroundGrid<3> &g, const double gamma)
+      { check_gradients<3>("lme", g, lme_settings<3>(gamma, 1e-14), 10, 24); });
+}
+
+TEST(ShapeFunctions, LmeNewtonIterations2D)
+{
+  for (const double gamma : lme_gammas)
+  {
+    SCOPED_TRACE("gamma " + std::to_string(gamma));
+    check_newton_iterations<2>(gamma, 31);
+  }
+}
+
+TEST(ShapeFunctions, LmeNewtonIterations3D)
+{
+  for (const double gamma : lme_gammas)
+  {
+    SCOPED_TRACE("gamma " + std::to_string(gamma));
+    check_newton_iterations<3>(gamma, 32);
+  }
+}
+
+TEST(ShapeFunctions, LmeWarmStartIsReusedAndStoredInPhysicalUnits)
+{
+  // The same configuration at two scales: identical N, lambda scales as 1/length.
+  auto g1 = uniform_grid<2>(0.1, 10);
+  auto g2 = uniform_grid<2>(0.2, 10);
+  auto s1 = make<2>("lme", *g1, lme_settings<2>(4.0));
+  auto s2 = make<2>("lme", *g2, lme_settings<2>(4.0));
+  ParticleStore<2> p1, p2;
+  const Point<2> x1(-0.3 + 0.013, 0.1 + 0.437); // near the lower x face
+  const Point<2> x2 =
+      Point<2>() + 2 * (x1 - g1->lower_corner()) + (g2->lower_corner() - Point<2>());
+  add_particle(p1, *g1, x1);
+  add_particle(p2, *g2, x2);
+  const auto c1 = evaluate(*s1, p1);
+  const auto c2 = evaluate(*s2, p2);
+  ASSERT_EQ(c1.n_nodes[0], c2.n_nodes[0]);
+  for (unsigned int k = 0; k < c1.n_nodes[0]; ++k)
+  {
+    EXPECT_NEAR(c1.N[k], c2.N[k], 1e-12);
+    EXPECT_NEAR((c1.grad_N[k] - 2 * c2.grad_N[k]).norm() * 0.1, 0, 1e-10);
+  }
+  EXPECT_GT(p1.lme_lambda[0].norm() * 0.1, 1.0); // the boundary pulls lambda up
+  EXPECT_NEAR((p1.lme_lambda[0] - 2 * p2.lme_lambda[0]).norm() * 0.1, 0, 1e-9);
+
+  // Recomputing at the same position converges at once from the stored multiplier.
+  const double before = lme_iterations(*s1);
+  const auto again    = evaluate(*s1, p1);
+  EXPECT_EQ(lme_iterations(*s1), before);
+  for (unsigned int k = 0; k < c1.n_nodes[0]; ++k)
+    EXPECT_NEAR(again.N[k], c1.N[k], 1e-14);
+}
+
+namespace
+{
+/// Largest LME row over many positions (random, on nodes, edges, faces, centres).
+template <int dim>
+unsigned int largest_lme_row(const ShapeFunction<dim> &sf,
+                             const BackgroundGrid<dim> &grid, const unsigned int seed)
+{
+  std::mt19937 rng(seed);
+  ParticleStore<dim> ps;
+  const double h = grid.min_spacing();
+  for (unsigned int i = 0; i < (dim == 2 ? 5000 : 1500); ++i)
+  {
+    Point<dim> x = random_point(grid, rng, 3.5 * h);
+    if (i % 2 == 0) // snap some coordinates to nodes or cell centres
+      for (unsigned int d = 0; d < dim; ++d)
+        if (rng() % 2)
+        {
+          std::array<unsigned int, dim> c;
+          grid.locate(x, c);
+          x[d] =
+              grid.coordinates(d)[c[d]] + (rng() % 2 ? 0.5 * grid.spacing(d, c[d]) : 0);
+        }
+    add_particle(ps, grid, x);
+  }
+  const auto conn = evaluate(sf, ps);
+  return *std::max_element(conn.n_nodes.begin(), conn.n_nodes.end());
+}
+} // namespace
+
+TEST(ShapeFunctions, LmeNodeBoundHolds)
+{
+  for (const double gamma : lme_gammas)
+  {
+    SCOPED_TRACE("gamma " + std::to_string(gamma));
+    auto g2                  = uniform_grid<2>(0.1, 20);
+    auto s2                  = make<2>("lme", *g2, lme_settings<2>(gamma));
+    const unsigned int most2 = largest_lme_row(*s2, *g2, 91);
+    EXPECT_LE(most2, s2->max_nodes_per_particle());
+    // Tight enough not to waste the connectivity: within 1.5x of what occurs.
+    EXPECT_LE(s2->max_nodes_per_particle(), 1.5 * most2);
+
+    auto g3                  = uniform_grid<3>(0.1, 14);
+    auto s3                  = make<3>("lme", *g3, lme_settings<3>(gamma));
+    const unsigned int most3 = largest_lme_row(*s3, *g3, 92);
+    EXPECT_LE(most3, s3->max_nodes_per_particle());
+    EXPECT_LE(s3->max_nodes_per_particle(), 2.0 * most3);
+  }
+  for_lme_graded_cases<2>(
+      [](const BackgroundGrid<2> &g, const double gamma)
+      {
+        auto sf = make<2>("lme", g, lme_settings<2>(gamma));
+        EXPECT_LE(largest_lme_row(*sf, g, 93), sf->max_nodes_per_particle());
+      });
+  for_lme_graded_cases<3>(
+      [](const BackgroundGrid<3> &g, const double gamma)
+      {
+        auto sf = make<3>("lme", g, lme_settings<3>(gamma));
+        EXPECT_LE(largest_lme_row(*sf, g, 94), sf->max_nodes_per_particle());
+      });
+}
+
+TEST(ShapeFunctions, LmeSupportMatchesRadius)
+{
+  // Cell centres of a regular grid. The reference README (section 6) quotes 24 / 89
+  // nodes for gamma 1.8 as typical; exactly at a cell centre the lattice count within
+  // R = 2.77 h is 24 in 2D and 88 in 3D (12 / 32 for gamma 3.5, 4 in 2D for 6.8).
+  {
+    auto grid = uniform_grid<2>(0.1, 12);
+    ParticleStore<2> ps;
+    add_particle(ps, *grid, cell_centre<2>(*grid, {{5, 6}}));
+    EXPECT_EQ(evaluate(*make<2>("lme", *grid, lme_settings<2>(1.8)), ps).n_nodes[0], 24u);
+    EXPECT_EQ(evaluate(*make<2>("lme", *grid, lme_settings<2>(3.5)), ps).n_nodes[0], 12u);
+    EXPECT_EQ(evaluate(*make<2>("lme", *grid, lme_settings<2>(6.8)), ps).n_nodes[0], 4u);
+  }
+  {
+    auto grid = uniform_grid<3>(0.1, 10);
+    ParticleStore<3> ps;
+    add_particle(ps, *grid, cell_centre<3>(*grid, {{4, 5, 4}}));
+    EXPECT_EQ(evaluate(*make<3>("lme", *grid, lme_settings<3>(1.8)), ps).n_nodes[0], 88u);
+    EXPECT_EQ(evaluate(*make<3>("lme", *grid, lme_settings<3>(3.5)), ps).n_nodes[0], 32u);
+  }
+  // Anywhere (boundaries, graded cells): exactly the nodes within R, and the bound holds.
+  for (const double gamma : lme_gammas)
+    check_support_is_ball<2>(*uniform_grid<2>(0.1, 12), gamma, 41);
+  for_lme_graded_cases<2>([](const BackgroundGrid<2> &g, const double gamma)
+                          { check_support_is_ball<2>(g, gamma, 42); });
+  for (const double gamma : lme_gammas)
+    check_support_is_ball<3>(*uniform_grid<3>(0.1, 10), gamma, 43);
+  for_lme_graded_cases<3>([](const BackgroundGrid<3> &g, const double gamma)
+                          { check_support_is_ball<3>(g, gamma, 44); });
+}
+
+namespace
+{
+/// Particles 0.1 h from faces and corners (uGIMP boxes of half-width 0.1 h touch them).
+template <int dim>
+void check_near_boundary(const std::string &type, const Settings &settings)
+{
+  const double h = 0.1;
+  auto grid      = uniform_grid<dim>(h, 6);
+  auto sf        = make<dim>(type, *grid, settings);
+  ParticleStore<dim> ps;
+  const Point<dim> lo = grid->lower_corner(), hi = grid->upper_corner();
+  const double v = volume_for_half_width<dim>(0.1 * h);
+  std::mt19937 rng(51);
+  for (unsigned int d = 0; d < dim; ++d)
+    for (const double offset : {0.1 * h, -0.1 * h})
+      for (unsigned int i = 0; i < 5; ++i)
+      {
+        Point<dim> x = random_point(*grid, rng, 0.1 * h);
+        x[d]         = offset > 0 ? lo[d] + offset : hi[d] + offset;
+        ps.add(x, 1.0, v, 0, 0);
+      }
+  Point<dim> corner_lo = lo, corner_hi = hi;
+  for (unsigned int d = 0; d < dim; ++d)
+    corner_lo[d] += 0.1 * h, corner_hi[d] -= 0.1 * h;
+  ps.add(corner_lo, 1.0, v, 0, 0);
+  ps.add(corner_hi, 1.0, v, 0, 0);
+  const auto conn = evaluate(*sf, ps);
+  for (std::size_t p = 0; p < ps.size(); ++p)
+    expect_consistent(conn, *grid, ps.position[p], p, type + " near boundary");
+}
+
+template <int dim>
+void expect_failure(const ShapeFunction<dim> &sf, const Point<dim> &x,
+                    const double volume)
+{
+  ParticleStore<dim> ps;
+  ps.add(x, 1.0, volume, 0, 0);
+  Connectivity<dim> conn;
+  conn.resize(1, sf.max_nodes_per_particle());
+  EXPECT_THROW(sf.compute(ps, 0, 1, conn), ExcShapeFunctionFailure)
+      << sf.name() << " at " << point_to_string(x);
+}
+} // namespace
+
+TEST(ShapeFunctions, NearBoundary)
+{
+  for (const std::string type : {"linear", "ugimp", "bspline"})
+  {
+    check_near_boundary<2>(type, {});
+    check_near_boundary<3>(type, {});
+  }
+  for (const double gamma : lme_gammas)
+  {
+    check_near_boundary<2>("lme", lme_settings<2>(gamma));
+    check_near_boundary<3>("lme", lme_settings<3>(gamma));
+  }
+}
+
+TEST(ShapeFunctions, BoundaryInterpolation)
+{
+  // At a grid corner every family but uGIMP interpolates: the corner node gets 1.
+  auto grid = uniform_grid<2>(0.1, 6);
+  for (const std::string type : {"linear", "bspline"})
+  {
+    ParticleStore<2> ps;
+    add_particle(ps, *grid, grid->lower_corner());
+    const auto conn = evaluate(*make<2>(type, *grid), ps);
+    EXPECT_EQ(conn.nodes[0], 0u);
+    EXPECT_NEAR(conn.N[0], 1.0, 1e-15) << type;
+  }
+  // B-spline interior weights at a node: 1/6, 2/3, 1/6 per direction.
+  ParticleStore<2> ps;
+  add_particle(ps, *grid, grid->node_point(grid->node_index({{3, 2}})));
+  const auto conn               = evaluate(*make<2>("bspline", *grid), ps);
+  const std::array<double, 4> w = {{1. / 6, 2. / 3, 1. / 6, 0}};
+  ASSERT_EQ(conn.n_nodes[0], 16u);
+  for (unsigned int b = 0; b < 4; ++b)
+    for (unsigned int a = 0; a < 4; ++a)
+    {
+      EXPECT_EQ(conn.nodes[4 * b + a], grid->node_index({{2 + a, 1 + b}}));
+      EXPECT_NEAR(conn.N[4 * b + a], w[a] * w[b], 1e-15);
+    }
+}
+
+TEST(ShapeFunctions, UgimpIsTheAverageOfTheHatFunctions)
+{
+  // Independent check: average the Q1 hats over the particle box with the trapezoidal
+  // rule on the pieces between grid lines (exact for piecewise-linear integrands).
+  const auto hat = [](const std::vector<double> &c, const unsigned int I, const double s)
+  {
+    if (I > 0 && s >= c[I - 1] && s <= c[I])
+      return (s - c[I - 1]) / (c[I] - c[I - 1]);
+    if (I + 1 < c.size() && s >= c[I] && s <= c[I + 1])
+      return (c[I + 1] - s) / (c[I + 1] - c[I]);
+    return 0.0;
+  };
+  const auto average =
+      [&](const std::vector<double> &c, const unsigned int I, double a, double b)
+  {
+    std::vector<double> cuts = {a, b};
+    for (const double ci : c)
+      if (ci > a && ci < b)
+        cuts.push_back(ci);
+    std::sort(cuts.begin(), cuts.end());
+    double sum = 0;
+    for (unsigned int k = 0; k + 1 < cuts.size(); ++k)
+      sum +=
+          0.5 * (cuts[k + 1] - cuts[k]) * (hat(c, I, cuts[k]) + hat(c, I, cuts[k + 1]));
+    return sum / (b - a);
+  };
+  for (const bool graded : {false, true})
+  {
+    auto grid              = graded ? graded_grid<2>() : uniform_grid<2>(0.1, 8);
+    const double thickness = 0.01;
+    auto sf                = make<2>("ugimp", *grid, {}, thickness);
+    std::mt19937 rng(61);
+    ParticleStore<2> ps;
+    const double lp = 0.3 * grid->min_spacing();
+    for (unsigned int i = 0; i < 50; ++i)
+      ps.add(random_point(*grid, rng, lp), 1.0, volume_for_half_width<2>(lp, thickness),
+             0, 0);
+    const auto conn = evaluate(*sf, ps);
+    for (std::size_t p = 0; p < ps.size(); ++p)
+    {
+      const Point<2> &x = ps.position[p];
+      double total      = 0;
+      for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+      {
+        const unsigned int node = conn.nodes[p * conn.stride + k];
+        const unsigned int i    = node % grid->n_nodes_in(0);
+        const unsigned int j    = node / grid->n_nodes_in(0);
+        const double expected   = average(grid->coordinates(0), i, x[0] - lp, x[0] + lp) *
+                                average(grid->coordinates(1), j, x[1] - lp, x[1] + lp);
+        EXPECT_NEAR(conn.N[p * conn.stride + k], expected, 1e-14);
+        total += expected;
+      }
+      EXPECT_NEAR(total, 1.0, 1e-13); // no node with weight was left out
+    }
+  }
+}
+
+TEST(ShapeFunctions, ConcurrentRangesMatchSerial)
+{
+  auto grid = uniform_grid<2>(0.1, 12);
+  std::mt19937 rng(71);
+  ParticleStore<2> serial;
+  for (unsigned int i = 0; i < 400; ++i)
+    add_particle(serial, *grid, random_point(*grid, rng, 0.3));
+  for (const auto &type : all_types)
+  {
+    auto sf                   = make<2>(type, *grid);
+    ParticleStore<2> parallel = serial;
+    const auto expected       = evaluate(*sf, serial);
+    Connectivity<2> conn;
+    conn.resize(parallel.size(), sf->max_nodes_per_particle());
+    std::thread t1([&] { sf->compute(parallel, 0, 150, conn); });
+    std::thread t2([&] { sf->compute(parallel, 150, parallel.size(), conn); });
+    t1.join(), t2.join();
+    EXPECT_EQ(conn.n_nodes, expected.n_nodes) << type;
+    EXPECT_EQ(conn.nodes, expected.nodes) << type;
+    EXPECT_EQ(conn.N, expected.N) << type;
+    if (type == "lme")
+    {
+      EXPECT_EQ(statistic(sf->statistics(), "lme_solves"), 2.0 * serial.size());
+    }
+  }
+}
+
+TEST(ShapeFunctions, ParticleOutsideGridThrows)
+{
+  const double h = 0.1;
+  auto g2        = uniform_grid<2>(h, 6);
+  auto g3        = uniform_grid<3>(h, 6);
+  for (const auto &type : all_types)
+  {
+    auto s2 = make<2>(type, *g2);
+    auto s3 = make<3>(type, *g3);
+    Point<2> below2(g2->lower_corner()[0] - 0.01 * h, g2->lower_corner()[1] + 0.3);
+    Point<2> above2(g2->lower_corner()[0] + 0.3, g2->upper_corner()[1] + 1e-9);
+    Point<3> below3 = g3->lower_corner() + Point<3>(0.3, 0.3, -0.01 * h);
+    const auto v2   = volume_for_half_width<2>(0.1 * h),
+               v3   = volume_for_half_width<3>(0.1 * h);
+    expect_failure<2>(*s2, below2, v2);
+    expect_failure<2>(*s2, above2, v2);
+    expect_failure<3>(*s3, below3, v3);
+  }
+}
+
+TEST(ShapeFunctions, LmeFailuresAreLoud)
+{
+  const double h = 0.1;
+  auto grid      = uniform_grid<2>(h, 6);
+  const double v = volume_for_half_width<2>(0.25 * h);
+  Point<2> near  = grid->lower_corner() + Point<2>(0.1 * h, 0.3);
+
+  // One Newton step is not enough from a cold start near the boundary at gamma 10 ...
+  Settings capped                  = lme_settings<2>(10);
+  capped["LME maximum iterations"] = "1";
+  expect_failure<2>(*make<2>("lme", *grid, capped), near, v);
+  // ... but the same solve succeeds with the default cap.
+  {
+    ParticleStore<2> ps;
+    ps.add(near, 1.0, v, 0, 0);
+    auto sf = make<2>("lme", *grid, lme_settings<2>(10));
+    EXPECT_NO_THROW(evaluate(*sf, ps));
+    EXPECT_GT(lme_iterations(*sf), 1.0);
+  }
+  // On the boundary the multiplier is unbounded (not strictly inside the hull).
+  expect_failure<2>(*make<2>("lme", *grid), grid->lower_corner() + Point<2>(0, 0.3), v);
+  // A support too small to surround the particle: gamma 100 at a cell centre.
+  expect_failure<2>(*make<2>("lme", *grid, lme_settings<2>(100)),
+                    cell_centre<2>(*grid, {{2, 3}}), v);
+  // Supports that cannot reach across the cell (see graded_grid, lme_settings):
+  // 3D gamma 10 with the default cut-off near the centre of a cell face, ...
+  {
+    auto grid3 = uniform_grid<3>(h, 6);
+    Settings s = {{"LME gamma", "10"}};
+    expect_failure<3>(*make<3>("lme", *grid3, s),
+                      cell_centre<3>(*grid3, {{2, 2, 2}}) + Point<3>(0.49 * h, 0, 0),
+                      volume_for_half_width<3>(0.25 * h));
+    s["LME tolerance"] = "1e-10";
+    ParticleStore<3> ok;
+    ok.add(cell_centre<3>(*grid3, {{2, 2, 2}}) + Point<3>(0.49 * h, 0, 0), 1.0, 1e-3, 0,
+           0);
+    EXPECT_NO_THROW(evaluate(*make<3>("lme", *grid3, s), ok));
+  }
+  // ... and gamma 3.5 in a cell of aspect ratio 2.2 (h is its short side), near its
+  // short edge: no node within R on the far side.
+  {
+    auto graded = graded_grid<2>();
+    // Cell (12, 0): spacings 0.11 x 0.05.
+    const Point<2> x(graded->coordinates(0)[12] + 0.01, 0.025);
+    EXPECT_NEAR(graded->spacing(0, 12) / graded->spacing(1, 0), 2.2, 1e-12);
+    expect_failure<2>(*make<2>("lme", *graded, lme_settings<2>(3.5)), x, v);
+    ParticleStore<2> ok;
+    ok.add(x, 1.0, v, 0, 0);
+    EXPECT_NO_THROW(evaluate(*make<2>("lme", *graded, lme_settings<2>(1.8)), ok));
+  }
+  // The message carries the family, the particle id and a reason.
+  ParticleStore<2> ps;
+  ps.add(grid->lower_corner() + Point<2>(0.3, 0.3), 1.0, v, 0, 0);
+  ps.add(grid->lower_corner() + Point<2>(0, 0.3), 1.0, v, 0, 0);
+  Connectivity<2> conn;
+  auto sf = make<2>("lme", *grid);
+  conn.resize(2, sf->max_nodes_per_particle());
+  try
+  {
+    sf->compute(ps, 0, 2, conn);
+    ADD_FAILURE() << "no exception";
+  }
+  catch (const ExcShapeFunctionFailure &e)
+  {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("lme shape functions failed at particle 1"), std::string::npos)
+        << what;
+    EXPECT_NE(what.find("convex hull"), std::string::npos) << what;
+  }
+}
+
+TEST(ShapeFunctions, UgimpDomainIsClippedAtTheGridEdge)
+{
+  const double h = 0.1;
+  auto grid      = uniform_grid<2>(h, 6);
+  auto sf        = make<2>("ugimp", *grid);
+  {
+    // Box [x - 0.25 h, x + 0.25 h] sticks out of the lower face by 0.05 h: clipped,
+    // so the weights are those of the box [x0, x + 0.25 h] and still sum to one.
+    ParticleStore<2> ps;
+    const Point<2> x = grid->lower_corner() + Point<2>(0.2 * h, 0.3);
+    ps.add(x, 1.0, volume_for_half_width<2>(0.25 * h), 0, 0);
+    Connectivity<2> conn;
+    conn.resize(1, sf->max_nodes_per_particle());
+    sf->compute(*&ps, 0, 1, conn);
+    double sum = 0;
+    Point<2> centre;
+    for (unsigned int k = 0; k < conn.n_nodes[0]; ++k)
+    {
+      sum += conn.N[k];
+      centre += conn.N[k] * grid->node_point(conn.nodes[k]);
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-14);
+    const double clipped_centre = grid->lower_corner()[0] + 0.5 * (0.2 + 0.25) * h;
+    EXPECT_NEAR(centre[0], clipped_centre, 1e-12);
+    EXPECT_NEAR(centre[1], x[1], 1e-12);
+  }
+  // A particle whose centre is outside the grid is an error.
+  expect_failure<2>(*sf, grid->lower_corner() + Point<2>(-0.01 * h, 0.3),
+                    volume_for_half_width<2>(0.25 * h));
+  // A box wider than a cell would need more nodes than the bound.
+  expect_failure<2>(*sf, cell_centre<2>(*grid, {{2, 2}}) + Point<2>(0.3 * h, 0),
+                    volume_for_half_width<2>(0.75 * h));
+  expect_failure<2>(*sf, cell_centre<2>(*grid, {{2, 2}}), 0.0);
+}
+
+TEST(ShapeFunctions, BsplineNeedsAUniformGrid)
+{
+  auto graded = graded_grid<2>();
+  try
+  {
+    make<2>("bspline", *graded);
+    ADD_FAILURE() << "no exception";
+  }
+  catch (const ExceptionBase &e)
+  {
+    EXPECT_NE(std::string(e.what()).find("Shape functions/Type"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_ANY_THROW(make<3>("bspline", *graded_grid<3>()));
+  EXPECT_NO_THROW(make<2>("bspline", *uniform_grid<2>(0.1, 4)));
+}
+
+namespace
+{
+template <int dim>
+void time_lme(const BackgroundGrid<dim> &grid, const double h, const std::size_t n,
+              const std::string &label)
+{
+  auto sf = make<dim>("lme", grid, lme_settings<dim>(1.8));
+  std::mt19937 rng(81);
+  ParticleStore<dim> ps;
+  for (std::size_t i = 0; i < n; ++i)
+    ps.add(random_point(grid, rng, 0.01 * h), 1.0, std::pow(h, dim) / (1 << dim), 0, 0);
+  Connectivity<dim> conn;
+  conn.resize(ps.size(), sf->max_nodes_per_particle());
+  using clock = std::chrono::steady_clock;
+  auto t0     = clock::now();
+  sf->compute(ps, 0, ps.size(), conn);
+  const double cold =
+      std::chrono::duration<double, std::nano>(clock::now() - t0).count() / n;
+  const double it_cold = lme_iterations(*sf);
+  std::normal_distribution<double> normal;
+  for (std::size_t p = 0; p < n; ++p)
+    for (unsigned int d = 0; d < dim; ++d)
+      ps.position[p][d] = std::clamp(ps.position[p][d] + 1e-3 * h * normal(rng),
+                                     grid.lower_corner()[d] + 1e-4 * h,
+                                     grid.upper_corner()[d] - 1e-4 * h);
+  t0 = clock::now();
+  sf->compute(ps, 0, ps.size(), conn);
+  const double warm =
+      std::chrono::duration<double, std::nano>(clock::now() - t0).count() / n;
+  std::cout << label << ": cold " << cold << " ns/particle (" << it_cold / n
+            << " iterations), warm " << warm << " ns/particle ("
+            << (lme_iterations(*sf) - it_cold) / n << " iterations), "
+            << sf->max_nodes_per_particle() << " max nodes" << std::endl;
+}
+} // namespace
+
+// Timing, not a check: run with --gtest_also_run_disabled_tests.
+TEST(ShapeFunctions, DISABLED_LmeTiming)
+{
+  auto g2 = uniform_grid<2>(0.01, 160);
+  time_lme<2>(*g2, 0.01, 100000, "2D gamma 1.8, 100k particles");
+  auto g3 = uniform_grid<3>(0.02, 30);
+  time_lme<3>(*g3, 0.02, 20000, "3D gamma 1.8, 20k particles");
+}
