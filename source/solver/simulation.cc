@@ -185,6 +185,10 @@ void Simulation<dim>::declare_parameters(ParameterHandler &prm,
                     "Write particle VTU files (history.csv and summary.json always).");
   prm.declare_entry("Write grid files", "false", Patterns::Bool(),
                     "Also write the background grid with nodal velocity and mass.");
+  prm.declare_entry("Peak force set", "", Patterns::Anything(),
+                    "Name of a constrained node set and a component, 'top:y': summary.json "
+                    "then reports peak_force (largest reaction, checked every step) and "
+                    "displacement_at_peak (the set's imposed displacement then).");
   prm.declare_entry("Verbosity", "1", Patterns::Integer(0, 2),
                     "0: errors only; 1: progress and timing; 2: more.");
   for (unsigned int p = 0; p < counts.probes; ++p)
@@ -226,6 +230,7 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
   output_interval       = prm.get_double("Output interval");
   write_particles       = prm.get_bool("Write particle files");
   const bool grid_files = prm.get_bool("Write grid files");
+  const std::string peak_entry = input::trim(prm.get("Peak force set"));
   prm.leave_subsection();
   pcout.set_condition(verbosity > 0);
   AssertThrow(!input::trim(output_directory).empty(),
@@ -313,6 +318,25 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
                               "'" + constraints.back()->name() + "' is used twice"));
   }
   prm.leave_subsection();
+
+  if (!peak_entry.empty())
+    {
+      const auto colon = peak_entry.find(':');
+      const std::string name = input::trim(peak_entry.substr(0, colon));
+      const std::string comp =
+        colon == std::string::npos ? "" : input::trim(peak_entry.substr(colon + 1));
+      for (unsigned int c = 0; c < constraints.size(); ++c)
+        if (constraints[c]->name() == name)
+          peak_constraint = c;
+      AssertThrow(peak_constraint < constraints.size(),
+                  ExcBadInput("Output/Peak force set",
+                              "no constrained node set is named '" + name + "'"));
+      AssertThrow(comp.size() == 1 && std::string("xyz").substr(0, dim).find(comp) !=
+                                        std::string::npos,
+                  ExcBadInput("Output/Peak force set",
+                              "give 'name:x', 'name:y'" + std::string(dim == 3 ? " or 'name:z'" : "")));
+      peak_component = std::string("xyz").find(comp);
+    }
 
   prm.enter_subsection("Output");
   for (unsigned int p = 0; p < counts.probes; ++p)
@@ -698,7 +722,13 @@ void Simulation<dim>::step()
         }
     }
     c->displacement += (dt / c->nodes().size()) * mean_rate;
-  }
+    }
+  if (peak_constraint < constraints.size() &&
+      constraints[peak_constraint]->reaction[peak_component] > peak_force)
+    {
+      peak_force           = constraints[peak_constraint]->reaction[peak_component];
+      displacement_at_peak = constraints[peak_constraint]->displacement[peak_component];
+    }
 
   // Grid to particle: Newmark corrector for velocity, predictor for position.
   std::atomic<std::size_t> bad{n_p};
@@ -1017,7 +1047,12 @@ std::map<std::string, double> Simulation<dim>::run()
   results["threads"]                   = n_threads_used;
   results["time_step"]                 = dt;
   results["particle_steps_per_second"] = store.size() * double(step_count) / wall;
-  results["max_energy_drift"]          = max_energy_drift;
+  results["max_energy_drift"] = max_energy_drift;
+  if (peak_constraint < constraints.size())
+    {
+      results["peak_force"]           = peak_force;
+      results["displacement_at_peak"] = displacement_at_peak;
+    }
   if (compare_exact)
   {
     results["max_error_displacement_l2"] = max_error_displacement;

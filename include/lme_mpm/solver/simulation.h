@@ -114,6 +114,8 @@ private:
   bool fracture_active = false;
   std::vector<std::unique_ptr<NodeConstraint<dim>>> constraints;
   std::vector<Probe<dim>> probes;
+  unsigned int peak_constraint = numbers::invalid_unsigned_int, peak_component = 0;
+  double       peak_force = -std::numeric_limits<double>::max(), displacement_at_peak = 0;
   Connectivity<dim> conn;
   unsigned int slab_layers = 1;
 
