@@ -90,6 +90,13 @@ private:
   void write_output_row(bool final_row);
   void abort_run(std::size_t p, const std::string &why) const;
   void update_fracture();
+  /// Mx = M_C x with the consistent mass matrix (two transfers, no matrix stored).
+  void apply_consistent_mass(const std::vector<Tensor<1, dim>> &x,
+                             std::vector<Tensor<1, dim>> &Mx);
+  template <class Constrain>
+  void correct_towards_consistent_mass(std::vector<Tensor<1, dim>> &x,
+                                       const std::vector<Tensor<1, dim>> &rhs,
+                                       const Constrain &constrain);
 
   // Configuration.
   unsigned int verbosity;
@@ -99,7 +106,8 @@ private:
   Tensor<1, dim> body_force;
   double dt = 0, t = 0;
   unsigned int n_steps = 0, step_count = 0;
-  double mass_tolerance = 0;
+  double mass_tolerance         = 0;
+  unsigned int mass_corrections = 0;
   bool write_particles;
   unsigned int n_threads_used = 1;
 
@@ -115,7 +123,7 @@ private:
   std::vector<std::unique_ptr<NodeConstraint<dim>>> constraints;
   std::vector<Probe<dim>> probes;
   unsigned int peak_constraint = numbers::invalid_unsigned_int, peak_component = 0;
-  double       peak_force = -std::numeric_limits<double>::max(), displacement_at_peak = 0;
+  double peak_force = -std::numeric_limits<double>::max(), displacement_at_peak = 0;
   Connectivity<dim> conn;
   unsigned int slab_layers = 1;
 
@@ -125,6 +133,8 @@ private:
       nodal_force, nodal_acceleration;
   // Per-particle displacement increment of the current step.
   std::vector<Tensor<1, dim>> particle_increment;
+  // Scratch for the consistent-mass corrections.
+  std::vector<Tensor<1, dim>> nodal_rhs, nodal_scratch, particle_scratch;
 
   // Energy accounting.
   double external_work = 0, external_power = 0, initial_total_energy = 0;
