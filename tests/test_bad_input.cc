@@ -123,3 +123,31 @@ TEST(BadInput, CommandLineExitCodes)
   EXPECT_FALSE(std::filesystem::exists(out));
   EXPECT_EQ(run("--print-parameters"), 0);
 }
+
+TEST(RunGuards, UnstableRunStopsWithDiagnosticAndKeepsItsOutput)
+{
+  // CFL 1.9 is beyond the explicit limit: the bar blows up. The run must stop with the
+  // step, time, particle and cause, keep history.csv and the particle files, and say
+  // 'aborted' in summary.json.
+  const std::string out = lme_mpm_test::scratch("unstable");
+  const std::string msg = lme_mpm_test::run_error(
+      lme_mpm_test::scene("vibrating_bar.prm"),
+      {"Time/Maximum CFL=2", "Time/CFL=1.9", "Time/Mass matrix corrections=0",
+       "Output/Output interval=0.0005"},
+      out);
+  EXPECT_NE(msg.find("Run stopped at step"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("particle"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("lower the CFL number"), std::string::npos) << msg;
+  ASSERT_TRUE(std::filesystem::exists(out + "/history.csv"));
+  ASSERT_TRUE(std::filesystem::exists(out + "/particles.pvd"));
+  std::ifstream history(out + "/history.csv");
+  std::string line;
+  unsigned int rows = 0;
+  while (std::getline(history, line))
+    ++rows;
+  EXPECT_GE(rows, 3u); // header, t = 0, and the row written at the failure
+  std::ifstream summary(out + "/summary.json");
+  std::stringstream text;
+  text << summary.rdbuf();
+  EXPECT_NE(text.str().find("\"status\": \"aborted\""), std::string::npos) << text.str();
+}

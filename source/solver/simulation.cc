@@ -829,8 +829,8 @@ void Simulation<dim>::step()
     if (!std::isfinite(store.velocity[p].norm_square()))
       why = "non-finite velocity (the run is unstable: lower the CFL number)";
     else if (!(store.density[p] > 0))
-      why = "non-positive density (the material is inverted: the deformation is too "
-            "large for a small-strain model, or the run is unstable)";
+      why = "non-positive density (the material is inverted: the run is unstable, lower "
+            "the CFL number, or the deformation is too large for a small-strain model)";
     else
       why = "the particle moved more than half a cell in one step (the run is "
             "unstable or the time step too large: lower the CFL number)";
@@ -1131,10 +1131,20 @@ std::map<std::string, double> Simulation<dim>::run()
       }
     }
   }
-  catch (const ExcRunAborted &e)
+  catch (const std::exception &e)
   {
-    status  = "aborted";
-    message = e.what();
+    // Any failure inside the loop (an unstable step, a shape-function solve that does
+    // not converge) ends the run with what it produced kept on disk.
+    status = "aborted";
+    if (dynamic_cast<const ExcRunAborted *>(&e) == nullptr)
+    {
+      std::ostringstream where;
+      where << "Run stopped at step " << step_count + 1 << ", time " << t << ": "
+            << input::concise_message(e);
+      message = where.str();
+    }
+    else
+      message = input::concise_message(e);
     // Keep what the run produced: one last row and particle file at the failure.
     try
     {
@@ -1181,7 +1191,11 @@ std::map<std::string, double> Simulation<dim>::run()
   }
 
   std::ofstream json(output_directory + "/summary.json");
+  std::string quoted;
+  for (const char c : message)
+    quoted += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
   json << std::setprecision(10) << "{\n  \"status\": \"" << status << "\",\n"
+       << "  \"message\": \"" << quoted << "\",\n"
        << "  \"shape_function\": \"" << shape_function->name() << "\",\n"
        << "  \"dimension\": " << dim;
   for (const auto &r : results)
@@ -1192,9 +1206,7 @@ std::map<std::string, double> Simulation<dim>::run()
   if (status != "completed")
   {
     // Past this point the output is on disk; the caller reports the failure.
-    std::string text = message;
-    const auto pos   = text.find("Run stopped");
-    AssertThrow(false, ExcMessage(pos == std::string::npos ? text : text.substr(pos)));
+    AssertThrow(false, ExcMessage(message));
   }
   pcout << "Finished: " << step_count << " steps in " << wall << " s ("
         << results["particle_steps_per_second"] << " particle-steps/s); max energy drift "
