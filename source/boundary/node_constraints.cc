@@ -92,6 +92,7 @@ void NodeConstraint<dim>::parse_parameters(ParameterHandler &prm,
   prm.leave_subsection();
   for (const auto &n : node_list)
     points.push_back(grid.node_point(n));
+  node_reaction.assign(node_list.size(), Tensor<1, dim>());
 
   // A constant expression (no x, y, z or t) is evaluated once.
   bool depends = false;

@@ -756,15 +756,16 @@ void Simulation<dim>::step()
       mass_times_acceleration = &nodal_rhs;
     }
   }
-  double power = 0;
+  // Work of the reactions over the step: the mean of the old and new reaction times
+  // the imposed displacement increment (exact for the central-difference scheme).
+  double work = 0;
   for (auto &c : constraints)
   {
     c->reaction = Tensor<1, dim>();
     Tensor<1, dim> mean_rate;
     for (unsigned int i = 0; i < c->nodes().size(); ++i)
     {
-      const unsigned int I       = c->nodes()[i];
-      const Tensor<1, dim> v_new = c->velocity(i, t_new);
+      const unsigned int I = c->nodes()[i];
       for (unsigned int d = 0; d < dim; ++d)
         if (c->constrains(d))
         {
@@ -773,7 +774,8 @@ void Simulation<dim>::step()
                                 : nodal_mass[I] * nodal_acceleration[I][d];
           const double r  = ma - nodal_force[I][d];
           c->reaction[d] += r;
-          power += r * v_new[d];
+          work += 0.5 * (c->node_reaction[i][d] + r) * dt * nodal_rate[I][d];
+          c->node_reaction[i][d] = r;
           mean_rate[d] += nodal_rate[I][d];
         }
     }
@@ -788,8 +790,9 @@ void Simulation<dim>::step()
 
   // Grid to particle: Newmark corrector for velocity, predictor for position.
   std::atomic<std::size_t> bad{n_p};
-  const double max_move   = 0.5 * background.min_spacing();
-  const double body_power = parallel::deterministic_sum<double>(
+  const double max_move = 0.5 * background.min_spacing();
+  // A constant body force does work m b . dx over the step's displacement exactly.
+  const double body_work = parallel::deterministic_sum<double>(
       n_p,
       [&](const std::size_t b, const std::size_t e)
       {
@@ -804,7 +807,7 @@ void Simulation<dim>::step()
               newmark.corrected_velocity(store.velocity[p], store.acceleration[p], a, dt);
           store.acceleration[p] = a;
           store.position[p] += particle_increment[p];
-          pw += store.mass[p] * (body_force * store.velocity[p]);
+          pw += store.mass[p] * (body_force * particle_increment[p]);
           const double move = particle_increment[p].norm();
           if (!(move < max_move) || !std::isfinite(store.velocity[p].norm_square()) ||
               !(store.density[p] > 0))
@@ -816,10 +819,8 @@ void Simulation<dim>::step()
         }
         return pw;
       });
-  power += body_power;
-  external_work += 0.5 * dt * (external_power + power);
-  external_power = power;
-  t              = t_new;
+  external_work += work + body_work;
+  t = t_new;
   ++step_count;
 
   if (bad.load() < n_p)

@@ -41,6 +41,8 @@ public:
   // Reported quantities, summed over the set.
   Tensor<1, dim> reaction;     ///< force the constraint applies (N)
   Tensor<1, dim> displacement; ///< mean imposed displacement (m)
+  /// Reaction on each node of the set at the end of the last step (for the work).
+  std::vector<Tensor<1, dim>> node_reaction;
 
 private:
   std::string set_name;

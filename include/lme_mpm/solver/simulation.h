@@ -137,7 +137,7 @@ private:
   std::vector<Tensor<1, dim>> nodal_rhs, nodal_scratch, particle_scratch;
 
   // Energy accounting.
-  double external_work = 0, external_power = 0, initial_total_energy = 0;
+  double external_work = 0, initial_total_energy = 0;
   double max_energy_drift = 0, energy_scale = 0;
 
   // Exact solution (verification scenes).
