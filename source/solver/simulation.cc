@@ -35,7 +35,7 @@ void parse_function(ParameterHandler &prm, const std::string &section,
   {
     f.parse_parameters(prm);
     // muparser compiles on first use: evaluate once so a syntax error shows here.
-    for (unsigned int c = 0; c < dim; ++c)
+    for (unsigned int c = 0; c < f.n_components; ++c)
       (void)f.value(Point<dim>(), c);
   }
   catch (...)
@@ -226,6 +226,12 @@ void Simulation<dim>::declare_parameters(ParameterHandler &prm,
     Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
     prm.leave_subsection();
   }
+  prm.declare_entry("Compare stress", "false", Patterns::Bool(),
+                    "Also report error_stress_l2 against 'Exact stress' (with 'Compare "
+                    "with exact solution').");
+  prm.enter_subsection("Exact stress");
+  Functions::ParsedFunction<dim>::declare_parameters(prm, dim * (dim + 1) / 2);
+  prm.leave_subsection();
   prm.leave_subsection();
 }
 
@@ -377,6 +383,12 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
     parse_function(prm, "Exact displacement", *exact_displacement,
                    "Verification/Exact displacement");
     parse_function(prm, "Exact velocity", *exact_velocity, "Verification/Exact velocity");
+    if (prm.get_bool("Compare stress"))
+    {
+      exact_stress =
+          std::make_unique<Functions::ParsedFunction<dim>>(dim * (dim + 1) / 2);
+      parse_function(prm, "Exact stress", *exact_stress, "Verification/Exact stress");
+    }
   }
   prm.leave_subsection();
 
@@ -891,6 +903,18 @@ void Simulation<dim>::correct_towards_consistent_mass(
 }
 
 template <int dim>
+SymmetricTensor<2, dim> Simulation<dim>::exact_stress_at(const Point<dim> &X) const
+{
+  // Components in the order xx, xy, (xz,) yy, (yz, zz).
+  SymmetricTensor<2, dim> s;
+  unsigned int c = 0;
+  for (unsigned int i = 0; i < dim; ++i)
+    for (unsigned int j = i; j < dim; ++j)
+      s[i][j] = exact_stress->value(X, c++);
+  return s;
+}
+
+template <int dim>
 void Simulation<dim>::update_fracture()
 {
   const std::size_t n = store.size();
@@ -1027,6 +1051,19 @@ void Simulation<dim>::write_output_row(const bool final_row)
     max_error_displacement = std::max(max_error_displacement, err_u);
     max_error_velocity     = std::max(max_error_velocity, err_v);
     row << "," << err_u << "," << err_v;
+    if (exact_stress)
+    {
+      exact_stress->set_time(t);
+      double es = 0;
+      for (std::size_t p = 0; p < store.size(); ++p)
+      {
+        const auto e = store.stress[p] - exact_stress_at(store.reference_position[p]);
+        es += store.initial_volume[p] * (e * e);
+      }
+      const double err_s = std::sqrt(es) / exact_stress_norm;
+      max_error_stress   = std::max(max_error_stress, err_s);
+      row << "," << err_s;
+    }
   }
   history << row.str() << "\n" << std::flush;
   results["final_total_energy"]   = e["total_energy"];
@@ -1068,7 +1105,19 @@ std::map<std::string, double> Simulation<dim>::run()
         }
       exact_displacement_norm = std::max(exact_displacement_norm, std::sqrt(nu));
       exact_velocity_norm     = std::max(exact_velocity_norm, std::sqrt(nv));
+      if (exact_stress)
+      {
+        exact_stress->set_time(s);
+        double ns = 0;
+        for (std::size_t p = 0; p < store.size(); ++p)
+        {
+          const auto e = exact_stress_at(store.reference_position[p]);
+          ns += store.initial_volume[p] * (e * e);
+        }
+        exact_stress_norm = std::max(exact_stress_norm, std::sqrt(ns));
+      }
     }
+  exact_stress_norm       = std::max(exact_stress_norm, 1e-300);
   exact_displacement_norm = std::max(exact_displacement_norm, 1e-300);
   exact_velocity_norm     = std::max(exact_velocity_norm, 1e-300);
 
@@ -1089,6 +1138,8 @@ std::map<std::string, double> Simulation<dim>::run()
         history << ",probe_" << probe.name << "_s" << axis[i] << axis[j];
   if (compare_exact)
     history << ",error_displacement_l2,error_velocity_l2";
+  if (exact_stress)
+    history << ",error_stress_l2";
   history << "\n";
 
   pcout << "lme-mpm: " << dim << "D, " << store.size() << " particles, "
@@ -1175,6 +1226,8 @@ std::map<std::string, double> Simulation<dim>::run()
   {
     results["max_error_displacement_l2"] = max_error_displacement;
     results["max_error_velocity_l2"]     = max_error_velocity;
+    if (exact_stress)
+      results["max_error_stress_l2"] = max_error_stress;
   }
   for (const auto &s : shape_function->statistics())
     results["shape_function_" + s.first] = s.second;

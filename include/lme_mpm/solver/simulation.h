@@ -142,7 +142,10 @@ private:
 
   // Exact solution (verification scenes).
   bool compare_exact = false;
-  std::unique_ptr<Functions::ParsedFunction<dim>> exact_displacement, exact_velocity;
+  std::unique_ptr<Functions::ParsedFunction<dim>> exact_displacement, exact_velocity,
+      exact_stress;
+  double exact_stress_norm = 0, max_error_stress = 0;
+  SymmetricTensor<2, dim> exact_stress_at(const Point<dim> &X) const;
   double exact_displacement_norm = 0, exact_velocity_norm = 0;
   double max_error_displacement = 0, max_error_velocity = 0;
 

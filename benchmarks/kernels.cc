@@ -1,0 +1,150 @@
+// Kernel timings (Google Benchmark): shape-function evaluation, cell sort, stress
+// update, neighbourhood build, and a whole time step. Items are particles, so the
+// reported rate is particles per second (one thread unless the benchmark says so).
+//
+//   cmake -S . -B build -DLME_MPM_BUILD_BENCHMARKS=ON && cmake --build build --target
+//   kernels
+//   ./build/kernels
+#include <deal.II/base/multithread_info.h>
+
+#include <benchmark/benchmark.h>
+
+#include <lme_mpm/fracture/neighbourhood.h>
+#include <lme_mpm/materials/linear_elastic.h>
+#include <lme_mpm/shape_functions/shape_function.h>
+#include <lme_mpm/solver/simulation.h>
+
+#include <random>
+#include <sstream>
+
+using namespace lme_mpm;
+
+namespace
+{
+constexpr double h = 0.01;
+
+/// 2D grid of 250 x 100 cells with 4 particles per cell (100,000 particles).
+struct Block
+{
+  BackgroundGrid<2> grid;
+  ParticleStore<2> particles;
+  Block()
+  {
+    grid.reinit(Point<2>(-0.1, -0.1),
+                {{std::vector<double>(270, h), std::vector<double>(120, h)}});
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> jitter(-0.1 * h, 0.1 * h);
+    for (unsigned int i = 0; i < 500; ++i)
+      for (unsigned int j = 0; j < 200; ++j)
+        particles.add(
+            Point<2>((i + 0.5) * h / 2 + jitter(rng), (j + 0.5) * h / 2 + jitter(rng)),
+            1.0, h * h / 4, 0, 0);
+  }
+};
+
+Block &block()
+{
+  static Block b;
+  return b;
+}
+
+std::unique_ptr<ShapeFunction<2>> make(const std::string &type, ParameterHandler &prm)
+{
+  prm.enter_subsection("Shape functions");
+  ShapeFunctionRegistry<2>::instance().declare_all(prm);
+  ShapeFunctionContext<2> context;
+  context.grid = &block().grid;
+  auto sf      = ShapeFunctionRegistry<2>::instance().create(type, prm, context);
+  prm.leave_subsection();
+  return sf;
+}
+
+void shape_functions(benchmark::State &state, const std::string &type, const bool warm)
+{
+  MultithreadInfo::set_thread_limit(1);
+  ParameterHandler prm;
+  auto sf = make(type, prm);
+  auto &P = block().particles;
+  Connectivity<2> conn;
+  conn.resize(P.size(), sf->max_nodes_per_particle());
+  sf->compute(P, 0, P.size(), conn); // converged multipliers for the warm start
+  for (auto _ : state)
+  {
+    if (!warm)
+      std::fill(P.lme_lambda.begin(), P.lme_lambda.end(), Tensor<1, 2>());
+    sf->compute(P, 0, P.size(), conn);
+    benchmark::DoNotOptimize(conn.N.data());
+  }
+  state.SetItemsProcessed(state.iterations() * P.size());
+}
+
+void cell_sort(benchmark::State &state)
+{
+  ParticleStore<2> P = block().particles;
+  std::mt19937 rng(1);
+  for (auto _ : state)
+  {
+    state.PauseTiming();
+    for (auto &c : P.cell) // a shuffled order: the worst case
+      c = rng() % block().grid.n_cells();
+    state.ResumeTiming();
+    P.sort_by_cell(block().grid.n_cells());
+  }
+  state.SetItemsProcessed(state.iterations() * P.size());
+}
+
+void stress_update(benchmark::State &state)
+{
+  ParticleStore<2> P = block().particles;
+  materials::LinearElastic<2> m(1000, 1e9, 0.3, PlaneAssumption::plane_strain);
+  for (auto &de : P.strain_increment)
+    de[0][0] = 1e-6, de[0][1] = 2e-7;
+  for (auto _ : state)
+    m.update_stress(P, 0, P.size(), 0);
+  state.SetItemsProcessed(state.iterations() * P.size());
+}
+
+void neighbourhood(benchmark::State &state)
+{
+  MultithreadInfo::set_thread_limit(1);
+  Neighbourhood<2> nb;
+  for (auto _ : state)
+    nb.build(block().particles.position, 2 * h);
+  state.SetItemsProcessed(state.iterations() * block().particles.size());
+}
+
+/// A whole step of the throughput scene (benchmarks/throughput.prm).
+void time_step(benchmark::State &state, const std::string &type)
+{
+  MultithreadInfo::set_thread_limit(state.range(0));
+  ParameterHandler prm;
+  ParameterCounts counts;
+  Simulation<2>::declare_parameters(prm, counts);
+  prm.parse_input(std::string(LME_MPM_SOURCE_DIR) + "/benchmarks/throughput.prm");
+  apply_overrides(prm, {"Shape functions/Type=" + type, "Output/Verbosity=0"}, false);
+  std::ostringstream quiet;
+  Simulation<2> sim(prm, counts, quiet);
+  sim.step();
+  for (auto _ : state)
+    sim.step();
+  state.SetItemsProcessed(state.iterations() * sim.particles().size());
+  MultithreadInfo::set_thread_limit();
+}
+} // namespace
+
+BENCHMARK_CAPTURE(shape_functions, linear, "linear", true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(shape_functions, ugimp, "ugimp", true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(shape_functions, bspline, "bspline", true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(shape_functions, lme_warm, "lme", true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(shape_functions, lme_cold, "lme", false)->Unit(benchmark::kMillisecond);
+BENCHMARK(cell_sort)->Unit(benchmark::kMillisecond);
+BENCHMARK(stress_update)->Unit(benchmark::kMillisecond);
+BENCHMARK(neighbourhood)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(time_step, linear, "linear")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(time_step, lme, "lme")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();
