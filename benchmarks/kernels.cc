@@ -144,7 +144,12 @@ BENCHMARK(neighbourhood)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(time_step, linear, "linear")
     ->Arg(1)
     ->Arg(2)
+    ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(time_step, lme, "lme")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(time_step, lme, "lme")
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();
