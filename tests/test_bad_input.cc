@@ -151,3 +151,23 @@ TEST(RunGuards, UnstableRunStopsWithDiagnosticAndKeepsItsOutput)
   text << summary.rdbuf();
   EXPECT_NE(text.str().find("\"status\": \"aborted\""), std::string::npos) << text.str();
 }
+
+TEST(Documentation, ParametersPageIsCurrent)
+{
+  // doc/parameters.md holds the --print-parameters output between ``` fences.
+  const std::string out = lme_mpm_test::scratch("params") + ".txt";
+  ASSERT_EQ(
+      std::system((std::string(LME_MPM_BINARY) + " --print-parameters > " + out).c_str()),
+      0);
+  std::ifstream printed(out),
+      page(std::string(LME_MPM_SOURCE_DIR) + "/doc/parameters.md");
+  std::stringstream a, b;
+  a << printed.rdbuf();
+  b << page.rdbuf();
+  const std::string text = b.str();
+  const auto open        = text.find("```\n");
+  const auto close       = text.rfind("```");
+  ASSERT_NE(open, std::string::npos);
+  EXPECT_EQ(text.substr(open + 4, close - open - 4), a.str())
+      << "doc/parameters.md is stale: run scripts/update_parameters_doc.sh build";
+}
