@@ -171,3 +171,71 @@ TEST(Documentation, ParametersPageIsCurrent)
   EXPECT_EQ(text.substr(open + 4, close - open - 4), a.str())
       << "doc/parameters.md is stale: run scripts/update_parameters_doc.sh build";
 }
+
+namespace
+{
+std::string file_text(const std::string &path)
+{
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+std::string checksum(const std::string &dir)
+{
+  const std::string s = file_text(dir + "/summary.json");
+  const auto pos      = s.find("\"state_checksum\": \"");
+  return pos == std::string::npos ? "" : s.substr(pos + 19, 16);
+}
+} // namespace
+
+TEST(Checkpoint, ResumedRunEndsBitwiseIdentical)
+{
+  // The tension bar with eigensoftening (damage, onset data and dissipation in the
+  // state) and LME (warm-start multipliers), resumed from a mid-run checkpoint.
+  const std::vector<std::string> scene = {"Grid/Cell size=0.005",
+                                          "Grid/Upper corner=0.1, 0.005",
+                                          "Body 1/Shape=rectangle(0.05, 0, 0.055, 0.005)",
+                                          "Body 2/Shape=rectangle(0, 0, 0.1, 0.005)",
+                                          "Body 2/Holes=rectangle(0.05, 0, 0.055, 0.005)",
+                                          "Shape functions/Type=lme",
+                                          "Output/Verbosity=0",
+                                          "Output/Output interval=2e-4"};
+  const std::string prm                = lme_mpm_test::scene("tension_bar.prm");
+  const std::string a                  = lme_mpm_test::scratch("ckpt_a"),
+                    b                  = lme_mpm_test::scratch("ckpt_b");
+  std::ostringstream quiet;
+  auto with = [&](std::vector<std::string> extra, const std::string &dir)
+  {
+    extra.insert(extra.end(), scene.begin(), scene.end());
+    extra.push_back("Output/Directory=" + dir);
+    return extra;
+  };
+  const auto full = lme_mpm::run_parameter_file(prm, with({}, a), quiet);
+  lme_mpm::run_parameter_file(prm, with({"Checkpoint/Every steps=1000"}, b), quiet);
+  ASSERT_TRUE(std::filesystem::exists(b + "/checkpoint.bin"));
+  ASSERT_TRUE(std::filesystem::exists(b + "/checkpoint.bin.prev"));
+  EXPECT_GT(full.at("dissipated_energy"), 0); // the checkpoints span the fracture
+  // Continue from the last checkpoint, written some steps before the end.
+  lme_mpm::run_parameter_file(prm, with({"Checkpoint/Every steps=1000"}, b), quiet, b);
+  EXPECT_FALSE(checksum(a).empty());
+  EXPECT_EQ(checksum(a), checksum(b));
+  EXPECT_EQ(file_text(a + "/history.csv"), file_text(b + "/history.csv"));
+  EXPECT_EQ(file_text(a + "/particles.pvd"), file_text(b + "/particles.pvd"));
+
+  // A checkpoint of another run is refused with a clear message.
+  try
+  {
+    lme_mpm::run_parameter_file(prm,
+                                with({"Time/End time=0.004", "Grid/Cell size=0.0025",
+                                      "Grid/Upper corner=0.1, 0.0025"},
+                                     b),
+                                quiet, b);
+    ADD_FAILURE() << "resumed a mismatched checkpoint";
+  }
+  catch (const std::exception &e)
+  {
+    EXPECT_NE(lme_mpm::input::concise_message(e).find("--resume"), std::string::npos)
+        << lme_mpm::input::concise_message(e);
+  }
+}

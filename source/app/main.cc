@@ -20,8 +20,11 @@ int main(int argc, char **argv)
         "set,s", po::value<std::vector<std::string>>()->composing(),
         "override an entry: --set \"Subsection/Entry=value\" (repeatable)")(
         "threads,t", po::value<unsigned int>(), "worker threads (default: all cores)")(
-        "print-parameters", "write the documented default parameter "
-                            "file to standard output");
+        "resume", po::value<std::string>(),
+        "continue the run whose checkpoint.bin is in this directory (give the same "
+        "parameter file and --set values)")("print-parameters",
+                                            "write the documented default parameter "
+                                            "file to standard output");
     po::options_description hidden;
     hidden.add_options()("file", po::value<std::string>(), "parameter file");
     po::options_description all;
@@ -74,7 +77,8 @@ int main(int argc, char **argv)
     const std::vector<std::string> overrides =
         vm.count("set") ? vm["set"].as<std::vector<std::string>>()
                         : std::vector<std::string>();
-    lme_mpm::run_parameter_file(vm["file"].as<std::string>(), overrides, std::cout);
+    lme_mpm::run_parameter_file(vm["file"].as<std::string>(), overrides, std::cout,
+                                vm.count("resume") ? vm["resume"].as<std::string>() : "");
   }
   catch (const std::exception &e)
   {

@@ -216,6 +216,16 @@ void Simulation<dim>::declare_parameters(ParameterHandler &prm,
   }
   prm.leave_subsection();
 
+  prm.enter_subsection("Checkpoint");
+  prm.declare_entry(
+      "Every steps", "0", Patterns::Integer(0),
+      "Write output/checkpoint.bin every this many steps (0: never); the "
+      "previous one is kept as checkpoint.bin.prev. --resume DIR continues.");
+  prm.declare_entry("Every seconds", "0", Patterns::Double(0),
+                    "Also write one when this much wall time has passed since the last "
+                    "(0: never).");
+  prm.leave_subsection();
+
   prm.enter_subsection("Verification");
   prm.declare_entry("Compare with exact solution", "false", Patterns::Bool(),
                     "Report error_displacement_l2 and error_velocity_l2 against the "
@@ -372,6 +382,11 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
     probes.push_back(probe);
     prm.leave_subsection();
   }
+  prm.leave_subsection();
+
+  prm.enter_subsection("Checkpoint");
+  checkpoint_every_steps   = prm.get_integer("Every steps");
+  checkpoint_every_seconds = prm.get_double("Every seconds");
   prm.leave_subsection();
 
   prm.enter_subsection("Verification");
@@ -902,6 +917,171 @@ void Simulation<dim>::correct_towards_consistent_mass(
   }
 }
 
+namespace
+{
+const char checkpoint_magic[9] = "LMEMPMC1";
+
+template <class T>
+void put(std::ostream &out, const T &v)
+{
+  static_assert(std::is_trivially_copyable_v<T>);
+  out.write(reinterpret_cast<const char *>(&v), sizeof(T));
+}
+template <class T>
+void get(std::istream &in, T &v)
+{
+  static_assert(std::is_trivially_copyable_v<T>);
+  in.read(reinterpret_cast<char *>(&v), sizeof(T));
+}
+template <class T>
+void put_vector(std::ostream &out, const std::vector<T> &v)
+{
+  put(out, std::uint64_t(v.size()));
+  out.write(reinterpret_cast<const char *>(v.data()), v.size() * sizeof(T));
+}
+template <class T>
+void get_vector(std::istream &in, std::vector<T> &v)
+{
+  std::uint64_t n = 0;
+  get(in, n);
+  v.resize(n);
+  in.read(reinterpret_cast<char *>(v.data()), n * sizeof(T));
+}
+void put_records(std::ostream &out, const std::vector<std::pair<double, std::string>> &r)
+{
+  put(out, std::uint64_t(r.size()));
+  for (const auto &[time, name] : r)
+  {
+    put(out, time);
+    put(out, std::uint64_t(name.size()));
+    out.write(name.data(), name.size());
+  }
+}
+void get_records(std::istream &in, std::vector<std::pair<double, std::string>> &r)
+{
+  std::uint64_t n = 0;
+  get(in, n);
+  r.resize(n);
+  for (auto &[time, name] : r)
+  {
+    std::uint64_t len = 0;
+    get(in, time);
+    get(in, len);
+    name.resize(len);
+    in.read(name.data(), len);
+  }
+}
+} // namespace
+
+template <int dim>
+void Simulation<dim>::write_checkpoint()
+{
+  // Everything a resumed run needs to continue bit for bit: the particles, the driver's
+  // accumulators and the output series. Nodal fields are rebuilt every step.
+  const std::string file = output_directory + "/checkpoint.bin";
+  {
+    std::ofstream out(file + ".tmp", std::ios::binary);
+    AssertThrow(out, ExcMessage("Cannot write the checkpoint '" + file + ".tmp'"));
+    history.flush();
+    out.write(checkpoint_magic, 8);
+    put(out, std::uint32_t(dim));
+    put(out, std::uint64_t(store.size()));
+    put(out, dt);
+    put(out, std::uint32_t(n_steps));
+    put(out, t);
+    put(out, std::uint32_t(step_count));
+    for (const double v :
+         {external_work, initial_total_energy, energy_scale, max_energy_drift,
+          next_output_time, peak_force, displacement_at_peak, max_error_displacement,
+          max_error_velocity, max_error_stress})
+      put(out, v);
+    put(out,
+        std::uint64_t(std::filesystem::file_size(output_directory + "/history.csv")));
+    for (const auto &c : constraints)
+    {
+      put(out, c->reaction);
+      put(out, c->displacement);
+      put_vector(out, c->node_reaction);
+    }
+    put_records(out, output->particle_series());
+    put_records(out, output->grid_series());
+    store.for_each_field([&](auto &field) { put_vector(out, field); });
+    AssertThrow(out, ExcMessage("Writing the checkpoint '" + file + ".tmp' failed"));
+  }
+  if (std::filesystem::exists(file))
+    std::filesystem::rename(file, file + ".prev");
+  std::filesystem::rename(file + ".tmp", file);
+}
+
+template <int dim>
+void Simulation<dim>::resume_from(const std::string &directory)
+{
+  const std::string file = directory + "/checkpoint.bin";
+  std::ifstream in(file, std::ios::binary);
+  AssertThrow(in, ExcBadInput("--resume", "no checkpoint '" + file + "'"));
+  char magic[8];
+  in.read(magic, 8);
+  AssertThrow(in && std::string(magic, 8) == std::string(checkpoint_magic, 8),
+              ExcBadInput("--resume", "'" + file + "' is not an lme-mpm checkpoint"));
+  std::uint32_t file_dim = 0, file_steps = 0, file_step = 0;
+  std::uint64_t n = 0;
+  double file_dt  = 0;
+  get(in, file_dim);
+  get(in, n);
+  get(in, file_dt);
+  get(in, file_steps);
+  std::ostringstream mismatch;
+  mismatch << "the checkpoint holds a " << file_dim << "D run of " << n
+           << " particles with dt = " << file_dt << " s; this parameter file gives "
+           << dim << "D, " << store.size() << " particles, dt = " << dt
+           << " s: resume with the parameter file (and --set "
+           << "values) of the run that wrote it";
+  AssertThrow(file_dim == dim && n == store.size() && file_dt == dt,
+              ExcBadInput("--resume", mismatch.str()));
+  get(in, t);
+  get(in, file_step);
+  step_count = file_step;
+  for (double *v :
+       {&external_work, &initial_total_energy, &energy_scale, &max_energy_drift,
+        &next_output_time, &peak_force, &displacement_at_peak, &max_error_displacement,
+        &max_error_velocity, &max_error_stress})
+    get(in, *v);
+  get(in, resumed_history_size);
+  for (auto &c : constraints)
+  {
+    get(in, c->reaction);
+    get(in, c->displacement);
+    get_vector(in, c->node_reaction);
+  }
+  typename ParticleOutput<dim>::Records particle_series, grid_series;
+  get_records(in, particle_series);
+  get_records(in, grid_series);
+  store.for_each_field([&](auto &field) { get_vector(in, field); });
+  AssertThrow(in, ExcBadInput("--resume", "'" + file + "' is truncated"));
+  AssertThrow(step_count <= n_steps,
+              ExcBadInput("--resume", "the checkpoint is past this run's end time"));
+  output_directory = directory;
+  output           = std::make_unique<ParticleOutput<dim>>(directory, false);
+  output->restore(particle_series, grid_series);
+  resumed = true;
+}
+
+template <int dim>
+std::uint64_t Simulation<dim>::state_checksum()
+{
+  std::uint64_t hash = 1469598103934665603ull;
+  auto bytes         = [&](const void *data, const std::size_t size)
+  {
+    const auto *c = static_cast<const unsigned char *>(data);
+    for (std::size_t i = 0; i < size; ++i)
+      hash = (hash ^ c[i]) * 1099511628211ull;
+  };
+  bytes(&t, sizeof(t));
+  store.for_each_field([&](auto &field)
+                       { bytes(field.data(), field.size() * sizeof(field[0])); });
+  return hash;
+}
+
 template <int dim>
 SymmetricTensor<2, dim> Simulation<dim>::exact_stress_at(const Point<dim> &X) const
 {
@@ -1123,24 +1303,34 @@ std::map<std::string, double> Simulation<dim>::run()
 
   // Only now, with every input checked, does the run write anything.
   std::filesystem::create_directories(output_directory);
-  history.open(output_directory + "/history.csv");
+  if (resumed)
+  {
+    // Drop the rows written after the checkpoint, then append.
+    std::filesystem::resize_file(output_directory + "/history.csv", resumed_history_size);
+    history.open(output_directory + "/history.csv", std::ios::app);
+  }
+  else
+    history.open(output_directory + "/history.csv");
   AssertThrow(history, ExcBadInput("Output/Directory",
                                    "cannot write to '" + output_directory + "'"));
-  history << "step,time,kinetic_energy,strain_energy,dissipated_energy,external_work,"
-             "total_energy";
-  for (const auto &c : constraints)
-    for (const char *q : {"force", "displacement"})
-      for (unsigned int d = 0; d < dim; ++d)
-        history << "," << q << "_" << c->name() << "_" << axis[d];
-  for (const auto &probe : probes)
-    for (unsigned int i = 0; i < dim; ++i)
-      for (unsigned int j = i; j < dim; ++j)
-        history << ",probe_" << probe.name << "_s" << axis[i] << axis[j];
-  if (compare_exact)
-    history << ",error_displacement_l2,error_velocity_l2";
-  if (exact_stress)
-    history << ",error_stress_l2";
-  history << "\n";
+  if (!resumed)
+  {
+    history << "step,time,kinetic_energy,strain_energy,dissipated_energy,external_work,"
+               "total_energy";
+    for (const auto &c : constraints)
+      for (const char *q : {"force", "displacement"})
+        for (unsigned int d = 0; d < dim; ++d)
+          history << "," << q << "_" << c->name() << "_" << axis[d];
+    for (const auto &probe : probes)
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = i; j < dim; ++j)
+          history << ",probe_" << probe.name << "_s" << axis[i] << axis[j];
+    if (compare_exact)
+      history << ",error_displacement_l2,error_velocity_l2";
+    if (exact_stress)
+      history << ",error_stress_l2";
+    history << "\n";
+  }
 
   pcout << "lme-mpm: " << dim << "D, " << store.size() << " particles, "
         << background.n_nodes() << " nodes, shape functions '" << shape_function->name()
@@ -1150,11 +1340,13 @@ std::map<std::string, double> Simulation<dim>::run()
   std::string status = "completed", message;
   try
   {
+    if (!resumed)
     {
       TimerOutput::Scope scope(timer, "output");
       write_output_row(false);
+      next_output_time = output_interval;
     }
-    next_output_time                = output_interval;
+    auto last_checkpoint            = std::chrono::steady_clock::now();
     const unsigned int report_every = std::max(1u, n_steps / 10);
     while (step_count < n_steps)
     {
@@ -1168,6 +1360,18 @@ std::map<std::string, double> Simulation<dim>::run()
         write_output_row(step_count == n_steps);
         while (next_output_time <= t + 0.5 * dt)
           next_output_time += output_interval;
+      }
+      const bool by_steps =
+          checkpoint_every_steps > 0 && step_count % checkpoint_every_steps == 0;
+      const bool by_time = checkpoint_every_seconds > 0 &&
+                           std::chrono::duration<double>(
+                               std::chrono::steady_clock::now() - last_checkpoint)
+                                   .count() >= checkpoint_every_seconds;
+      if ((by_steps || by_time) && step_count < n_steps)
+      {
+        TimerOutput::Scope scope(timer, "checkpoint");
+        write_checkpoint();
+        last_checkpoint = std::chrono::steady_clock::now();
       }
       if (step_count % report_every == 0 || step_count == n_steps)
       {
@@ -1251,6 +1455,8 @@ std::map<std::string, double> Simulation<dim>::run()
   json << std::setprecision(10) << "{\n  \"status\": \"" << status << "\",\n"
        << "  \"message\": \"" << quoted << "\",\n"
        << "  \"shape_function\": \"" << shape_function->name() << "\",\n"
+       << "  \"state_checksum\": \"" << std::hex << state_checksum() << std::dec
+       << "\",\n"
        << "  \"dimension\": " << dim;
   for (const auto &r : results)
     json << ",\n  \"" << r.first << "\": " << r.second;
@@ -1314,20 +1520,22 @@ namespace
 template <int dim>
 std::map<std::string, double>
 run_dim(const std::string &file, const std::vector<std::string> &overrides,
-        const ParameterCounts &counts, std::ostream &console)
+        const ParameterCounts &counts, std::ostream &console, const std::string &resume)
 {
   ParameterHandler prm;
   Simulation<dim>::declare_parameters(prm, counts);
   prm.parse_input(file, "", false, false);
   apply_overrides(prm, overrides, false);
   Simulation<dim> simulation(prm, counts, console);
+  if (!resume.empty())
+    simulation.resume_from(resume);
   return simulation.run();
 }
 } // namespace
 
 std::map<std::string, double>
 run_parameter_file(const std::string &file, const std::vector<std::string> &overrides,
-                   std::ostream &console)
+                   std::ostream &console, const std::string &resume)
 {
   AssertThrow(std::filesystem::exists(file),
               ExcBadInput("parameter file", "'" + file + "' does not exist"));
@@ -1341,8 +1549,8 @@ run_parameter_file(const std::string &file, const std::vector<std::string> &over
     counts.parse_parameters(prm);
   }
   if (counts.dim == 2)
-    return run_dim<2>(file, overrides, counts, console);
-  return run_dim<3>(file, overrides, counts, console);
+    return run_dim<2>(file, overrides, counts, console, resume);
+  return run_dim<3>(file, overrides, counts, console, resume);
 }
 
 void print_default_parameters(std::ostream &out)

@@ -27,6 +27,16 @@ public:
   void write_grid(const BackgroundGrid<dim> &grid, const std::vector<double> &nodal_mass,
                   const std::vector<Tensor<1, dim>> &nodal_velocity, double time);
 
+  /// The series written so far (for checkpoints), and their restoration on resume.
+  using Records = std::vector<std::pair<double, std::string>>;
+  const Records &particle_series() const { return particle_records; }
+  const Records &grid_series() const { return grid_records; }
+  void restore(const Records &particles, const Records &grid)
+  {
+    particle_records = particles;
+    grid_records     = grid;
+  }
+
 private:
   std::string directory;
   bool grid_enabled;

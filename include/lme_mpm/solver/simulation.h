@@ -77,6 +77,15 @@ public:
   double time_step() const { return dt; }
   const ParticleStore<dim> &particles() const { return store; }
   const BackgroundGrid<dim> &grid() const { return background; }
+  /**
+   * Continues the run saved in @p directory/checkpoint.bin (written by a run of the same
+   * parameter file); output goes on in that directory. Call before run().
+   */
+  void resume_from(const std::string &directory);
+
+  /// A hash of every particle field and the time: equal states, equal sums (FNV-1a).
+  std::uint64_t state_checksum();
+
   /// Kinetic, strain, external work and total energy (J) now.
   std::map<std::string, double> energies() const;
 
@@ -90,6 +99,7 @@ private:
   void write_output_row(bool final_row);
   void abort_run(std::size_t p, const std::string &why) const;
   void update_fracture();
+  void write_checkpoint();
   /// Mx = M_C x with the consistent mass matrix (two transfers, no matrix stored).
   void apply_consistent_mass(const std::vector<Tensor<1, dim>> &x,
                              std::vector<Tensor<1, dim>> &Mx);
@@ -106,8 +116,13 @@ private:
   Tensor<1, dim> body_force;
   double dt = 0, t = 0;
   unsigned int n_steps = 0, step_count = 0;
-  double mass_tolerance         = 0;
-  unsigned int mass_corrections = 0;
+  double mass_tolerance = 0;
+  // Checkpoints.
+  unsigned int checkpoint_every_steps = 0;
+  double checkpoint_every_seconds     = 0;
+  bool resumed                        = false;
+  std::uint64_t resumed_history_size  = 0;
+  unsigned int mass_corrections       = 0;
   bool write_particles;
   unsigned int n_threads_used = 1;
 
@@ -165,7 +180,7 @@ private:
  */
 std::map<std::string, double>
 run_parameter_file(const std::string &file, const std::vector<std::string> &overrides,
-                   std::ostream &console = std::cout);
+                   std::ostream &console = std::cout, const std::string &resume = "");
 
 /// Applies "A/B/Entry=value" overrides; with @p skip_unknown, unknown entries are
 /// ignored.
