@@ -322,3 +322,60 @@ end
   EXPECT_GT(drift_coarse / summary.at("max_energy_drift"), 6.0); // dt^2 would give 9
   EXPECT_GT(last[col("external_work")], 0);                      // gravity did work
 }
+
+namespace
+{
+/// Resident memory of this process in bytes (Linux).
+std::size_t resident_bytes()
+{
+  std::ifstream statm("/proc/self/statm");
+  std::size_t size = 0, resident = 0;
+  statm >> size >> resident;
+  return resident * static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+}
+} // namespace
+
+TEST(LongRun, HundredThousandStepsWithoutGrowthAndWithBoundedEnergy)
+{
+  // The vibrating bar at h = 0.05 (160 particles, LME) for 1e5 steps: about 375
+  // periods. Memory must not grow between the first and the last 5e4 steps, and the
+  // energy of the undamped bar must stay bounded.
+  MultithreadInfo::set_thread_limit(1);
+  ParameterHandler prm;
+  ParameterCounts counts;
+  counts.constraints = 2;
+  Simulation<2>::declare_parameters(prm, counts);
+  prm.parse_input(lme_mpm_test::scene("vibrating_bar.prm"));
+  const double dt = 0.3 * 0.05 / std::sqrt(1e8 / 1000);
+  apply_overrides(prm,
+                  {"Output/Verbosity=0", "Grid/Cell size=0.05",
+                   "Shape functions/Type=lme", "Time/Time step=" + std::to_string(dt),
+                   "Time/End time=" + std::to_string(1e5 * dt),
+                   "Output/Directory=" + lme_mpm_test::scratch("long")},
+                  false);
+  std::ostringstream quiet;
+  Simulation<2> sim(prm, counts, quiet);
+  const double e0      = sim.energies().at("kinetic_energy");
+  std::size_t rss_half = 0;
+  double e_max = 0, e_min = 1e300;
+  for (unsigned int s = 0; s < 100000; ++s)
+  {
+    sim.step();
+    if (s == 50000)
+      rss_half = resident_bytes();
+    if (s % 1000 == 0)
+    {
+      const auto e       = sim.energies();
+      const double total = e.at("kinetic_energy") + e.at("strain_energy");
+      e_max = std::max(e_max, total), e_min = std::min(e_min, total);
+    }
+  }
+  const std::size_t rss_end = resident_bytes();
+  std::cout << "long run: resident " << rss_half / 1024 << " kB after 5e4 steps, "
+            << rss_end / 1024 << " kB after 1e5; energy in [" << e_min / e0 << ", "
+            << e_max / e0 << "] of the initial" << std::endl;
+  EXPECT_LE(rss_end, rss_half + 256 * 1024); // no growth beyond allocator noise
+  EXPECT_LT(e_max / e0, 1.01);
+  EXPECT_GT(e_min / e0, 0.99);
+  MultithreadInfo::set_thread_limit();
+}
