@@ -332,11 +332,20 @@ void check_gradients(const std::string &type, const BackgroundGrid<dim> &grid,
   }
 }
 
-/// Newton iterations of the LME solves done by the last compute() calls.
+/// Newton iterations (with exponentials) of the LME solves done so far.
 template <int dim>
 double lme_iterations(const ShapeFunction<dim> &sf)
 {
   return statistic(sf.statistics(), "lme_newton_iterations");
+}
+
+/// All Newton steps of the LME solves done so far, polynomial ones included.
+template <int dim>
+double lme_steps(const ShapeFunction<dim> &sf)
+{
+  const auto stats = sf.statistics();
+  return statistic(stats, "lme_newton_iterations") +
+         statistic(stats, "lme_mean_polynomial_steps") * statistic(stats, "lme_solves");
 }
 
 /**
@@ -364,26 +373,29 @@ void check_newton_iterations(const double gamma, const unsigned int seed)
     add_particle(anywhere, *grid, random_point(*grid, rng, 1e-3 * h));
     add_particle(inner, *grid, random_point(*grid, rng, 0.05 * h));
   }
-  // Largest iteration count, and how many particles needed more than 3.
+  // Largest count of iterations with exponentials, how many particles needed more
+  // than 3 of them, and the largest count of all steps.
   const auto iterations = [&](ParticleStore<dim> &ps)
   {
     Connectivity<dim> conn;
     conn.resize(ps.size(), sf->max_nodes_per_particle());
-    unsigned int most = 0, over_3 = 0;
+    unsigned int most = 0, over_3 = 0, most_steps = 0;
     for (std::size_t p = 0; p < ps.size(); ++p)
     {
-      const double before = lme_iterations(*sf);
+      const double before = lme_iterations(*sf), steps_before = lme_steps(*sf);
       sf->compute(ps, p, p + 1, conn);
       const unsigned int used = lme_iterations(*sf) - before;
       most                    = std::max(most, used);
       over_3 += (used > 3);
+      most_steps =
+          std::max<unsigned int>(most_steps, std::lround(lme_steps(*sf) - steps_before));
       if (p % 20 == 0)
         expect_consistent(conn, *grid, ps.position[p], p, "lme");
     }
-    return std::make_pair(most, over_3);
+    return std::make_tuple(most, over_3, most_steps);
   };
 
-  const unsigned int cold_max = iterations(anywhere).first;
+  const unsigned int cold_max = std::get<0>(iterations(anywhere));
   EXPECT_LE(cold_max, 8u);
   EXPECT_GE(cold_max, 2u); // a cold start is not a converged one
   EXPECT_LE(statistic(sf->statistics(), "lme_max_newton_iterations"), 8.0);
@@ -397,8 +409,8 @@ void check_newton_iterations(const double gamma, const unsigned int seed)
       dir[d] = normal(rng);
     inner.position[p] += (1e-3 * h / dir.norm()) * dir;
   }
-  const auto [warm_max, warm_over_3] = iterations(inner);
-  EXPECT_GE(warm_max, 1u); // the move is not lost in the tolerance
+  const auto [warm_max, warm_over_3, warm_steps] = iterations(inner);
+  EXPECT_GE(warm_steps, 1u); // the move is not lost in the tolerance
   if (gamma <= 6.8)
   {
     EXPECT_LE(warm_max, 3u);
@@ -626,6 +638,66 @@ TEST(ShapeFunctions, LmeWarmStartIsReusedAndStoredInPhysicalUnits)
   EXPECT_EQ(lme_iterations(*s1), before);
   for (unsigned int k = 0; k < c1.n_nodes[0]; ++k)
     EXPECT_NEAR(again.N[k], c1.N[k], 1e-14);
+}
+
+/**
+ * Small moves take the extrapolated warm start and the linearised Newton step (one
+ * exponential pass per solve); the result is the converged max-ent function: it
+ * matches a cold solve at the same position to rounding.
+ */
+TEST(ShapeFunctions, LmeSmallMovesNeedOneExponentialPass)
+{
+  const double h = 0.1;
+  auto grid      = uniform_grid<2>(h, 12);
+  for (const double gamma : {1.8, 4.0})
+  {
+    auto warm_sf = make<2>("lme", *grid, lme_settings<2>(gamma));
+    std::mt19937 rng(7);
+    ParticleStore<2> moving;
+    for (unsigned int i = 0; i < 500; ++i)
+      add_particle(moving, *grid, random_point(*grid, rng, 0.05 * h));
+    evaluate(*warm_sf, moving);
+    // A steady drift of 2e-4 h per step, as in an explicit run.
+    std::normal_distribution<double> normal;
+    std::vector<Tensor<1, 2>> drift(moving.size());
+    for (auto &v : drift)
+      v = Tensor<1, 2>({normal(rng), normal(rng)}), v *= 2e-4 * h / v.norm();
+    Connectivity<2> warm;
+    for (unsigned int step = 0; step < 5; ++step)
+    {
+      for (std::size_t p = 0; p < moving.size(); ++p)
+        moving.position[p] += drift[p];
+      const double evaluations_before =
+          statistic(warm_sf->statistics(), "lme_mean_evaluations") *
+          statistic(warm_sf->statistics(), "lme_solves");
+      warm = evaluate(*warm_sf, moving);
+      const double evaluations =
+          statistic(warm_sf->statistics(), "lme_mean_evaluations") *
+              statistic(warm_sf->statistics(), "lme_solves") -
+          evaluations_before;
+      if (step > 0) // the first move has no motion history to extrapolate from
+      {
+        EXPECT_LE(evaluations, 1.01 * moving.size()) << "gamma " << gamma;
+      }
+    }
+    ParticleStore<2> fresh;
+    for (std::size_t p = 0; p < moving.size(); ++p)
+      add_particle(fresh, *grid, moving.position[p]);
+    auto cold_sf    = make<2>("lme", *grid, lme_settings<2>(gamma));
+    const auto cold = evaluate(*cold_sf, fresh);
+    for (std::size_t p = 0; p < moving.size(); ++p)
+    {
+      ASSERT_EQ(warm.n_nodes[p], cold.n_nodes[p]);
+      for (unsigned int k = 0; k < cold.n_nodes[p]; ++k)
+      {
+        const std::size_t i = p * cold.stride + k;
+        EXPECT_NEAR(warm.N[i], cold.N[i], 1e-11);
+        EXPECT_NEAR((warm.grad_N[i] - cold.grad_N[i]).norm() * h, 0, 1e-9);
+      }
+      if (p % 25 == 0)
+        expect_consistent(warm, *grid, moving.position[p], p, "lme");
+    }
+  }
 }
 
 namespace

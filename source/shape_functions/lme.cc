@@ -7,10 +7,30 @@
 #include <limits>
 #include <sstream>
 
+#ifdef LME_MPM_EIGEN_EXP
+#include <Eigen/Core>
+#endif
+
 namespace lme_mpm
 {
 namespace shape_functions
 {
+namespace
+{
+/// v[i] = exp(v[i] - shift) for i < n: the single largest cost of an LME evaluation.
+inline void exponentiate(double *v, const unsigned int n, const double shift)
+{
+#ifdef LME_MPM_EIGEN_EXP
+  // Eigen's packet exp: two (SSE2) or four (AVX) exponentials per instruction.
+  Eigen::Map<Eigen::ArrayXd> a(v, n);
+  a = (a - shift).exp();
+#else
+  for (unsigned int i = 0; i < n; ++i)
+    v[i] = std::exp(v[i] - shift);
+#endif
+}
+} // namespace
+
 /**
  * Local maximum-entropy approximants (Arroyo & Ortiz 2006):
  *   N_I(x) = exp(-beta |x - x_I|^2 + lambda . (x - x_I)) / Z(x, lambda),
@@ -24,10 +44,11 @@ namespace shape_functions
  * holding the particle. lambda is found by Newton's method on the convex log Z
  * (with a third-order correction near the solution) and a Wolfe line search (plain
  * Newton diverges for gamma >~ 6.8), in coordinates scaled by h, warm-started from
- * the particle's previous multiplier (ParticleStore::lme_lambda), which is updated
- * in place. Any particle where the solve cannot succeed (outside the grid, not
- * strictly inside the hull of its nodes, no convergence) stops the run with
- * ExcShapeFunctionFailure.
+ * the particle's previous multiplier (ParticleStore::lme_lambda) extrapolated along
+ * its motion since then; steps that small are taken with a Taylor polynomial in place
+ * of the exponentials, so a typical explicit step costs one exponential pass. Any
+ * particle where the solve cannot succeed (outside the grid, not strictly inside the hull
+ * of its nodes, no convergence) stops the run with ExcShapeFunctionFailure.
  *
  * Because h is the cell's smallest spacing, a particle needs R^2 >= max_d (s_d^2 +
  * sum_{e != d} (s_e / 2)^2) in a cell of spacings s to have nodes on every side:
@@ -113,9 +134,14 @@ public:
     for (unsigned int d = 0; d < dim; ++d)
       y1d[d].resize(max_box_1d);
     const double R2 = radius_over_h * radius_over_h;
+    // Largest |s . (y_I - r)| of a Newton step taken with the cubic Taylor
+    // polynomial of exp: its relative error t^4 / 24 stays below newton_tol.
+    const double cheap_step_limit = std::pow(24 * newton_tol, 0.25);
+    const Tensor<2, dim> unit     = unit_symmetric_tensor<dim>();
 
-    std::uint64_t local_solves = 0, local_iterations = 0, local_evaluations = 0;
-    unsigned int local_max = 0;
+    std::uint64_t local_solves = 0, local_iterations = 0, local_evaluations = 0,
+                  local_cheap = 0;
+    unsigned int local_max    = 0;
 
     for (std::size_t p = begin; p < end; ++p)
     {
@@ -245,13 +271,13 @@ public:
           N[I]  = a[I] + mu * y[I];
           f_max = std::max(f_max, N[I]);
         }
+        exponentiate(N, n, f_max);
         double Z = 0;
         r        = 0;
         J        = 0;
         for (unsigned int I = 0; I < n; ++I)
         {
-          const double e = std::exp(N[I] - f_max);
-          N[I]           = e;
+          const double e = N[I];
           Z += e;
           for (unsigned int i = 0; i < dim; ++i)
           {
@@ -286,13 +312,19 @@ public:
         fail(s.str());
       };
 
-      Tensor<1, dim> mu = particles.lme_lambda[p] * h;
+      // Warm start extrapolated along the motion since the last solve: on r(mu, x) =
+      // 0 the implicit function theorem gives d mu / d(x / h) = 2 gamma I - J^-1, so
+      // the first residual is second order in the particle's displacement.
+      Tensor<1, dim> mu =
+          (particles.lme_lambda[p] +
+           particles.lme_lambda_rate[p] * (x - particles.lme_position[p])) *
+          h;
       Tensor<1, dim> r, r_trial, mu_trial;
       Tensor<2, dim> J, J_trial;
       double F, F_trial;
       evaluate(mu, F, r, J);
       ++local_evaluations;
-      unsigned int it = 0;
+      unsigned int it = 0, cheap = 0; // all steps; those without exponentials
       while (!(r.norm() < newton_tol))
       {
         if (it == max_iterations)
@@ -307,6 +339,40 @@ public:
         // large gamma (small J, so lambda moves a lot with x) need a fourth.
         const Tensor<2, dim> J_inv_step = invert(J);
         Tensor<1, dim> step             = -(J_inv_step * r);
+        // Near the solution (the common case after the extrapolated warm start) the
+        // step is taken without exponentials: N_I(mu + s) is proportional to N_I(mu)
+        // exp(s . (y_I - r)), and the cubic Taylor polynomial p(t) of exp(t) is
+        // within t^4 / 24 <= newton_tol of it for |t| below cheap_step_limit; the
+        // normalisation absorbs the common factor exactly.
+        if (step.norm() * (radius_over_h + r.norm()) < cheap_step_limit)
+        {
+          double S = 0;
+          Tensor<1, dim> r_new;
+          Tensor<2, dim> J_new;
+          for (unsigned int I = 0; I < n; ++I)
+          {
+            const double t = step * (y[I] - r);
+            N[I] *= 1 + t * (1 + t * (0.5 + t * (1. / 6)));
+            S += N[I];
+            for (unsigned int i = 0; i < dim; ++i)
+            {
+              r_new[i] += N[I] * y[I][i];
+              for (unsigned int j = i; j < dim; ++j)
+                J_new[i][j] += N[I] * y[I][i] * y[I][j];
+            }
+          }
+          const double inv_S = 1 / S;
+          for (unsigned int I = 0; I < n; ++I)
+            N[I] *= inv_S;
+          F += step * r + std::log(S); // log Z(mu + s) - log Z(mu) = s . r + log S
+          r_new *= inv_S;
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int j = i; j < dim; ++j)
+              J_new[j][i] = J_new[i][j] = J_new[i][j] * inv_S - r_new[i] * r_new[j];
+          mu += step, r = r_new, J = J_new;
+          ++it, ++cheap;
+          continue;
+        }
         {
           Tensor<1, dim> w;
           for (unsigned int I = 0; I < n; ++I)
@@ -372,17 +438,21 @@ public:
       const Tensor<2, dim> J_inv = invert(J);
       for (unsigned int I = 0; I < n; ++I)
         gradN[I] = (-N[I] * inv_h) * (J_inv * (y[I] - r));
-      conn.n_nodes[p]         = n;
-      particles.lme_lambda[p] = mu * inv_h;
+      conn.n_nodes[p]              = n;
+      particles.lme_lambda[p]      = mu * inv_h;
+      particles.lme_position[p]    = x;
+      particles.lme_lambda_rate[p] = (2 * gamma * unit - J_inv) * (inv_h * inv_h);
 
       ++local_solves;
-      local_iterations += it;
-      local_max = std::max(local_max, it);
+      local_iterations += it - cheap;
+      local_cheap += cheap;
+      local_max = std::max(local_max, it - cheap);
     }
 
     n_solves += local_solves;
     n_iterations += local_iterations;
     n_evaluations += local_evaluations;
+    n_cheap_steps += local_cheap;
     unsigned int seen = max_iterations_seen.load();
     while (local_max > seen &&
            !max_iterations_seen.compare_exchange_weak(seen, local_max))
@@ -393,11 +463,13 @@ public:
   std::vector<std::pair<std::string, double>> statistics() const override
   {
     const double solves = n_solves.load(), iterations = n_iterations.load();
-    return {{"lme_solves", solves},
-            {"lme_newton_iterations", iterations},
-            {"lme_mean_newton_iterations", solves > 0 ? iterations / solves : 0.0},
-            {"lme_max_newton_iterations", double(max_iterations_seen.load())},
-            {"lme_mean_evaluations", solves > 0 ? n_evaluations.load() / solves : 0.0}};
+    return {
+        {"lme_solves", solves},
+        {"lme_newton_iterations", iterations},
+        {"lme_mean_newton_iterations", solves > 0 ? iterations / solves : 0.0},
+        {"lme_max_newton_iterations", double(max_iterations_seen.load())},
+        {"lme_mean_evaluations", solves > 0 ? n_evaluations.load() / solves : 0.0},
+        {"lme_mean_polynomial_steps", solves > 0 ? n_cheap_steps.load() / solves : 0.0}};
   }
 
 private:
@@ -439,6 +511,7 @@ private:
   mutable std::atomic<std::uint64_t> n_solves{0};
   mutable std::atomic<std::uint64_t> n_iterations{0};
   mutable std::atomic<std::uint64_t> n_evaluations{0};
+  mutable std::atomic<std::uint64_t> n_cheap_steps{0};
   mutable std::atomic<unsigned int> max_iterations_seen{0};
 };
 } // namespace shape_functions

@@ -59,8 +59,11 @@ public:
   std::vector<std::uint16_t> material_id;
   std::vector<std::uint16_t> body_id;
   std::vector<std::uint32_t> cell; ///< index of the background cell holding it
-  // Shape-function state: the LME Lagrange multiplier, a warm start for next step.
+  // Shape-function state: the LME Lagrange multiplier at lme_position and its
+  // derivative d lambda / d x there, which extrapolate a warm start for next step.
   std::vector<Tensor<1, dim>> lme_lambda;
+  std::vector<Point<dim>> lme_position;
+  std::vector<Tensor<2, dim>> lme_lambda_rate;
   // Fracture state.
   std::vector<double> damage;       ///< chi in [0, 1]
   std::vector<double> onset_strain; ///< principal strain at softening onset
@@ -74,8 +77,9 @@ public:
   {
     f(position), f(reference_position), f(velocity), f(acceleration), f(mass), f(volume),
         f(initial_volume), f(density), f(strain), f(strain_increment), f(stress), f(id),
-        f(material_id), f(body_id), f(cell), f(lme_lambda), f(damage), f(onset_strain),
-        f(onset_stress), f(dissipated), f(failed);
+        f(material_id), f(body_id), f(cell), f(lme_lambda), f(lme_position),
+        f(lme_lambda_rate), f(damage), f(onset_strain), f(onset_stress), f(dissipated),
+        f(failed);
   }
 
 private:
