@@ -473,6 +473,26 @@ void Simulation<dim>::setup_particles(ParameterHandler &prm,
     parse_function(prm, "Initial velocity", velocity, section + "/Initial velocity");
     prm.leave_subsection();
 
+    // A neighbourhood narrower than the particle spacing holds only the particle
+    // itself: the fracture criterion would then not average anything.
+    if (fracture_models[material])
+    {
+      double h_max = 0;
+      for (unsigned int d = 0; d < dim; ++d)
+        for (unsigned int i = 0; i + 1 < background.coordinates(d).size(); ++i)
+          h_max = std::max(h_max, background.spacing(d, i));
+      const double spacing = h_max / n_per_dir;
+      AssertThrow(
+          fracture_models[material]->epsilon() >= spacing,
+          ExcBadInput(subsection_name("Material", material) + "/Fracture/Epsilon factor",
+                      "the neighbourhood radius C_eps h = " +
+                          std::to_string(fracture_models[material]->epsilon()) +
+                          " is smaller than the particle spacing " +
+                          std::to_string(spacing) + " of " + section +
+                          "; raise it to at least " +
+                          std::to_string(spacing / background.min_spacing())));
+    }
+
     // The body must lie inside the grid, or part of it would silently vanish.
     const auto box = shape->bounding_box().get_boundary_points();
     for (unsigned int d = 0; d < dim; ++d)
@@ -586,9 +606,14 @@ void Simulation<dim>::compute_connectivity()
   conn.resize(n, shape_function->max_nodes_per_particle());
   parallel::for_range(n, [&](const std::size_t b, const std::size_t e)
                       { shape_function->compute(store, b, e, conn); });
+}
+
+template <int dim>
+void Simulation<dim>::update_slab_layers()
+{
   // Slab width for the colour-split scatter: how far supports reach across layers.
   unsigned int below = 0, above = 0;
-  for (std::size_t p = 0; p < n; ++p)
+  for (std::size_t p = 0; p < store.size(); ++p)
   {
     const unsigned int layer = background.cell_layer(store.cell[p]);
     const unsigned int *row  = &conn.nodes[p * conn.stride];
@@ -604,6 +629,18 @@ template <int dim>
 template <class F>
 void Simulation<dim>::scatter(const F &f)
 {
+  scatter_chunks(
+      [&](const std::size_t b, const std::size_t e)
+      {
+        for (std::size_t p = b; p < e; ++p)
+          f(p);
+      });
+}
+
+template <int dim>
+template <class F>
+void Simulation<dim>::scatter_chunks(const F &f)
+{
   // Slabs of `slab_layers` cell layers; slabs of one colour touch disjoint nodes, so
   // they run concurrently, each in particle order: sums do not depend on threads.
   const auto &offsets         = store.cell_offsets();
@@ -615,8 +652,8 @@ void Simulation<dim>::scatter(const F &f)
   {
     const std::size_t b = offsets[s * w * cpl];
     const std::size_t e = offsets[std::min((s + 1) * w, n_layers) * cpl];
-    for (std::size_t p = b; p < e; ++p)
-      f(p);
+    for (std::size_t c = b; c < e; c += scatter_chunk)
+      f(c, std::min(e, c + scatter_chunk));
   };
   for (unsigned int colour = 0; colour < 2; ++colour)
   {
@@ -639,46 +676,73 @@ void Simulation<dim>::scatter(const F &f)
 template <int dim>
 void Simulation<dim>::step()
 {
-  const std::size_t n_p  = store.size();
-  const unsigned int n_n = background.n_nodes();
+  const std::size_t n_p = store.size();
   const double t_half = t + 0.5 * dt, t_new = t + dt;
 
   locate_and_sort();
-  compute_connectivity();
 
   // Particle to grid: mass, momentum and mass-weighted acceleration.
-  nodal_mass.assign(n_n, 0.0);
-  nodal_momentum.assign(n_n, Tensor<1, dim>());
-  nodal_mass_acceleration.assign(n_n, Tensor<1, dim>());
-  scatter(
-      [&](const std::size_t p)
+  const auto particle_to_grid = [&](const std::size_t b, const std::size_t e)
+  {
+    for (std::size_t p = b; p < e; ++p)
+    {
+      const std::size_t o     = p * conn.stride;
+      const double m          = store.mass[p];
+      const Tensor<1, dim> mv = m * store.velocity[p], ma = m * store.acceleration[p];
+      for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
       {
-        const std::size_t o     = p * conn.stride;
-        const double m          = store.mass[p];
-        const Tensor<1, dim> mv = m * store.velocity[p], ma = m * store.acceleration[p];
-        for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+        const unsigned int I = conn.nodes[o + k];
+        const double N       = conn.N[o + k];
+        nodal_mass[I] += N * m;
+        nodal_momentum[I] += N * mv;
+        nodal_mass_acceleration[I] += N * ma;
+      }
+    }
+  };
+  clear_nodal_arrays();
+  if (slab_layers == 0) // first step: no slab width yet
+  {
+    compute_connectivity();
+    update_slab_layers();
+    scatter_chunks(particle_to_grid);
+  }
+  else
+  {
+    // Each chunk's connectivity is scattered while in cache, in slabs as wide as
+    // the last step's supports; should this step's reach further, the transfer is
+    // repeated with the wider slabs. Either way the order depends on the particles
+    // only, not on the threads.
+    const unsigned int width = slab_layers;
+    conn.resize(n_p, shape_function->max_nodes_per_particle());
+    scatter_chunks(
+        [&](const std::size_t b, const std::size_t e)
         {
-          const unsigned int I = conn.nodes[o + k];
-          const double N       = conn.N[o + k];
-          nodal_mass[I] += N * m;
-          nodal_momentum[I] += N * mv;
-          nodal_mass_acceleration[I] += N * ma;
-        }
-      });
+          shape_function->compute(store, b, e, conn);
+          particle_to_grid(b, e);
+        });
+    update_slab_layers();
+    if (slab_layers > width)
+    {
+      collect_active_nodes();
+      clear_nodal_arrays();
+      scatter_chunks(particle_to_grid);
+    }
+    else
+      slab_layers = width; // the width used, kept for bitwise restarts
+  }
+
+  collect_active_nodes();
 
   // Displacement predictor on the grid, then the essential conditions on it.
-  nodal_rate.resize(n_n);
-  parallel::for_range(n_n,
-                      [&](const std::size_t b, const std::size_t e)
-                      {
-                        for (std::size_t I = b; I < e; ++I)
-                          nodal_rate[I] =
-                              nodal_mass[I] > mass_tolerance
-                                  ? newmark.displacement_rate(
-                                        nodal_momentum[I] / nodal_mass[I],
-                                        nodal_mass_acceleration[I] / nodal_mass[I], dt)
-                                  : Tensor<1, dim>();
-                      });
+  for_active_nodes(
+      [&](const unsigned int I)
+      {
+        nodal_rate[I] = nodal_mass[I] > mass_tolerance
+                            ? newmark.displacement_rate(
+                                  nodal_momentum[I] / nodal_mass[I],
+                                  nodal_mass_acceleration[I] / nodal_mass[I], dt)
+                            : Tensor<1, dim>();
+      });
   auto constrain_rate = [&](std::vector<Tensor<1, dim>> &x)
   {
     for (auto &c : constraints)
@@ -693,72 +757,93 @@ void Simulation<dim>::step()
   constrain_rate(nodal_rate);
   if (mass_corrections > 0)
   {
-    nodal_rhs.resize(n_n);
-    for (unsigned int I = 0; I < n_n; ++I)
-      nodal_rhs[I] = nodal_momentum[I] + (0.5 * dt) * nodal_mass_acceleration[I];
+    for_active_nodes(
+        [&](const unsigned int I)
+        { nodal_rhs[I] = nodal_momentum[I] + (0.5 * dt) * nodal_mass_acceleration[I]; });
     correct_towards_consistent_mass(nodal_rate, nodal_rhs, constrain_rate);
   }
 
   // Strain increment, density and the particle displacement increment.
   particle_increment.resize(n_p);
-  parallel::for_range(n_p,
-                      [&](const std::size_t b, const std::size_t e)
-                      {
-                        for (std::size_t p = b; p < e; ++p)
-                        {
-                          const std::size_t o = p * conn.stride;
-                          Tensor<2, dim> grad_v;
-                          Tensor<1, dim> v;
-                          for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
-                          {
-                            const Tensor<1, dim> &w = nodal_rate[conn.nodes[o + k]];
-                            grad_v += outer_product(w, conn.grad_N[o + k]);
-                            v += conn.N[o + k] * w;
-                          }
-                          const SymmetricTensor<2, dim> de = dt * symmetrize(grad_v);
-                          store.strain_increment[p]        = de;
-                          store.strain[p] += de;
-                          store.density[p] /= (1 + trace(de));
-                          store.volume[p]       = store.mass[p] / store.density[p];
-                          particle_increment[p] = dt * v;
-                        }
-                      });
-
-  // Constitutive update, one call per material and block.
-  parallel::for_range(n_p,
-                      [&](const std::size_t b, const std::size_t e)
-                      {
-                        for (unsigned int m = 0; m < materials.size(); ++m)
-                          materials[m]->update_stress(store, b, e, m);
-                      });
-
-  if (fracture_active)
-    update_fracture();
-
-  // Grid forces: internal (damaged stress) and body force.
-  nodal_force.assign(n_n, Tensor<1, dim>());
-  scatter(
-      [&](const std::size_t p)
+  const auto strain_increments = [&](const std::size_t b, const std::size_t e)
+  {
+    for (std::size_t p = b; p < e; ++p)
+    {
+      const std::size_t o = p * conn.stride;
+      Tensor<2, dim> grad_v;
+      Tensor<1, dim> v;
+      for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
       {
-        const std::size_t o = p * conn.stride;
-        const SymmetricTensor<2, dim> s =
-            (store.failed[p] ? 0.0 : (1 - store.damage[p]) * store.initial_volume[p]) *
-            store.stress[p];
+        const Tensor<1, dim> &w = nodal_rate[conn.nodes[o + k]];
+        grad_v += outer_product(w, conn.grad_N[o + k]);
+        v += conn.N[o + k] * w;
+      }
+      const SymmetricTensor<2, dim> de = dt * symmetrize(grad_v);
+      store.strain_increment[p]        = de;
+      store.strain[p] += de;
+      store.density[p] /= (1 + trace(de));
+      store.volume[p]       = store.mass[p] / store.density[p];
+      particle_increment[p] = dt * v;
+    }
+  };
+  // Constitutive update, one call per material and block.
+  const auto stresses = [&](const std::size_t b, const std::size_t e)
+  {
+    for (unsigned int m = 0; m < materials.size(); ++m)
+      materials[m]->update_stress(store, b, e, m);
+  };
+  // Grid forces: internal (damaged stress) and body force.
+  const bool gravity = body_force.norm_square() > 0;
+  const auto forces  = [&](const std::size_t b, const std::size_t e)
+  {
+    for (std::size_t p = b; p < e; ++p)
+    {
+      const std::size_t o = p * conn.stride;
+      // A full tensor: the symmetric one's element access costs more per node.
+      const Tensor<2, dim> s =
+          (store.failed[p] ? 0.0 : (1 - store.damage[p]) * store.initial_volume[p]) *
+          store.stress[p];
+      const unsigned int n = conn.n_nodes[p];
+      if (gravity)
+      {
         const Tensor<1, dim> g = store.mass[p] * body_force;
-        for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+        for (unsigned int k = 0; k < n; ++k)
           nodal_force[conn.nodes[o + k]] += conn.N[o + k] * g - s * conn.grad_N[o + k];
-      });
+      }
+      else
+        for (unsigned int k = 0; k < n; ++k)
+          nodal_force[conn.nodes[o + k]] -= s * conn.grad_N[o + k];
+    }
+  };
+  if (fracture_active)
+  {
+    // The fracture update couples particles through their neighbourhoods: all
+    // stresses first.
+    parallel::for_range(n_p, strain_increments);
+    parallel::for_range(n_p, stresses);
+    update_fracture();
+    scatter_chunks(forces);
+  }
+  else
+    // Without it each particle's strain, stress and force follow one another,
+    // chunk by chunk while its connectivity is in cache: the same arithmetic in
+    // the same order, one pass over the connectivity fewer.
+    scatter_chunks(
+        [&](const std::size_t b, const std::size_t e)
+        {
+          strain_increments(b, e);
+          stresses(b, e);
+          forces(b, e);
+        });
 
   // Accelerations, the constraints' accelerations and their reactions.
-  nodal_acceleration.resize(n_n);
-  parallel::for_range(n_n,
-                      [&](const std::size_t b, const std::size_t e)
-                      {
-                        for (std::size_t I = b; I < e; ++I)
-                          nodal_acceleration[I] = nodal_mass[I] > mass_tolerance
-                                                      ? nodal_force[I] / nodal_mass[I]
-                                                      : Tensor<1, dim>();
-                      });
+  for_active_nodes(
+      [&](const unsigned int I)
+      {
+        nodal_acceleration[I] = nodal_mass[I] > mass_tolerance
+                                    ? nodal_force[I] / nodal_mass[I]
+                                    : Tensor<1, dim>();
+      });
   auto constrain_acceleration = [&](std::vector<Tensor<1, dim>> &x)
   {
     for (auto &c : constraints)
@@ -867,6 +952,57 @@ void Simulation<dim>::step()
 }
 
 template <int dim>
+void Simulation<dim>::clear_nodal_arrays()
+{
+  const unsigned int n_n = background.n_nodes();
+  if (nodal_mass.size() != n_n)
+  {
+    nodal_mass.assign(n_n, 0.0);
+    for (auto *v : {&nodal_momentum, &nodal_mass_acceleration, &nodal_rate, &nodal_force,
+                    &nodal_acceleration, &nodal_rhs, &nodal_scratch})
+      v->assign(n_n, Tensor<1, dim>());
+    active_nodes.clear();
+    return;
+  }
+  auto clear = [&](const unsigned int I)
+  {
+    nodal_mass[I] = 0;
+    for (auto *v : {&nodal_momentum, &nodal_mass_acceleration, &nodal_rate, &nodal_force,
+                    &nodal_acceleration, &nodal_rhs, &nodal_scratch})
+      (*v)[I] = Tensor<1, dim>();
+  };
+  for_active_nodes(clear);
+  // Constraints write their values on nodes that may hold no mass.
+  for (const auto &c : constraints)
+    for (const unsigned int I : c->nodes())
+      clear(I);
+}
+
+template <int dim>
+void Simulation<dim>::collect_active_nodes()
+{
+  // A scan of the mass array: a few hundred kilobytes even for large grids, far less
+  // than clearing and updating every nodal array over the whole grid.
+  const unsigned int n_n = background.n_nodes();
+  active_nodes.clear();
+  for (unsigned int I = 0; I < n_n; ++I)
+    if (nodal_mass[I] != 0)
+      active_nodes.push_back(I);
+}
+
+template <int dim>
+template <class F>
+void Simulation<dim>::for_active_nodes(const F &f) const
+{
+  parallel::for_range(active_nodes.size(),
+                      [&](const std::size_t b, const std::size_t e)
+                      {
+                        for (std::size_t i = b; i < e; ++i)
+                          f(active_nodes[i]);
+                      });
+}
+
+template <int dim>
 void Simulation<dim>::apply_consistent_mass(const std::vector<Tensor<1, dim>> &x,
                                             std::vector<Tensor<1, dim>> &Mx)
 {
@@ -885,7 +1021,8 @@ void Simulation<dim>::apply_consistent_mass(const std::vector<Tensor<1, dim>> &x
                           particle_scratch[p] = store.mass[p] * xp;
                         }
                       });
-  Mx.assign(background.n_nodes(), Tensor<1, dim>());
+  for (const unsigned int I : active_nodes)
+    Mx[I] = Tensor<1, dim>();
   scatter(
       [&](const std::size_t p)
       {
@@ -906,20 +1043,19 @@ void Simulation<dim>::correct_towards_consistent_mass(
   for (unsigned int k = 0; k < mass_corrections; ++k)
   {
     apply_consistent_mass(x, nodal_scratch);
-    parallel::for_range(background.n_nodes(),
-                        [&](const std::size_t b, const std::size_t e)
-                        {
-                          for (std::size_t I = b; I < e; ++I)
-                            if (nodal_mass[I] > mass_tolerance)
-                              x[I] += (rhs[I] - nodal_scratch[I]) / nodal_mass[I];
-                        });
+    for_active_nodes(
+        [&](const unsigned int I)
+        {
+          if (nodal_mass[I] > mass_tolerance)
+            x[I] += (rhs[I] - nodal_scratch[I]) / nodal_mass[I];
+        });
     constrain(x);
   }
 }
 
 namespace
 {
-const char checkpoint_magic[9] = "LMEMPMC1";
+const char checkpoint_magic[9] = "LMEMPMC2";
 
 template <class T>
 void put(std::ostream &out, const T &v)
@@ -990,6 +1126,7 @@ void Simulation<dim>::write_checkpoint()
     put(out, std::uint32_t(n_steps));
     put(out, t);
     put(out, std::uint32_t(step_count));
+    put(out, std::uint32_t(slab_layers));
     for (const double v :
          {external_work, initial_total_energy, energy_scale, max_energy_drift,
           next_output_time, peak_force, displacement_at_peak, max_error_displacement,
@@ -1040,7 +1177,10 @@ void Simulation<dim>::resume_from(const std::string &directory)
               ExcBadInput("--resume", mismatch.str()));
   get(in, t);
   get(in, file_step);
-  step_count = file_step;
+  step_count                     = file_step;
+  std::uint32_t file_slab_layers = 0;
+  get(in, file_slab_layers);
+  slab_layers = file_slab_layers;
   for (double *v :
        {&external_work, &initial_total_energy, &energy_scale, &max_energy_drift,
         &next_output_time, &peak_force, &displacement_at_peak, &max_error_displacement,
@@ -1446,6 +1586,24 @@ std::map<std::string, double> Simulation<dim>::run()
       failed += f;
     results["failed_particles"]  = failed;
     results["dissipated_energy"] = energies()["dissipated_energy"];
+    // The crack as a point set that scripts can read without a VTU parser.
+    std::ofstream crack(output_directory + "/failed_particles.csv");
+    crack << "id";
+    for (unsigned int d = 0; d < dim; ++d)
+      crack << ",x" << d;
+    for (unsigned int d = 0; d < dim; ++d)
+      crack << ",x0_" << d;
+    crack << ",damage\n" << std::setprecision(10);
+    for (std::size_t p = 0; p < store.size(); ++p)
+      if (store.failed[p])
+      {
+        crack << store.id[p];
+        for (unsigned int d = 0; d < dim; ++d)
+          crack << ',' << store.position[p][d];
+        for (unsigned int d = 0; d < dim; ++d)
+          crack << ',' << store.reference_position[p][d];
+        crack << ',' << store.damage[p] << '\n';
+      }
   }
 
   std::ofstream json(output_directory + "/summary.json");

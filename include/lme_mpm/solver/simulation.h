@@ -94,8 +94,16 @@ private:
   void setup_time_step(ParameterHandler &prm);
   void locate_and_sort();
   void compute_connectivity();
+  void update_slab_layers();
+  /// Calls f(p) for every particle, in an order that adds to each node in a way
+  /// independent of the thread count (two colours of slabs of cell layers).
   template <class F>
   void scatter(const F &f);
+  /// The same order, handing f(begin, end) chunks of at most scatter_chunk particles.
+  template <class F>
+  void scatter_chunks(const F &f);
+  /// Small enough for a chunk's connectivity to stay in the L2 cache.
+  static constexpr std::size_t scatter_chunk = 256;
   void write_output_row(bool final_row);
   void abort_run(std::size_t p, const std::string &why) const;
   void update_fracture();
@@ -140,7 +148,7 @@ private:
   unsigned int peak_constraint = numbers::invalid_unsigned_int, peak_component = 0;
   double peak_force = -std::numeric_limits<double>::max(), displacement_at_peak = 0;
   Connectivity<dim> conn;
-  unsigned int slab_layers = 1;
+  unsigned int slab_layers = 0; ///< 0 until the first connectivity
 
   // Nodal fields (lexicographic node index).
   std::vector<double> nodal_mass;
@@ -150,6 +158,16 @@ private:
   std::vector<Tensor<1, dim>> particle_increment;
   // Scratch for the consistent-mass corrections.
   std::vector<Tensor<1, dim>> nodal_rhs, nodal_scratch, particle_scratch;
+  // Nodes that carry mass this step, ascending. Nodal loops run over them only and the
+  // nodal arrays are zero elsewhere, so empty grid regions cost nothing per step.
+  std::vector<unsigned int> active_nodes;
+  /// Zeroes the nodal arrays where the last step wrote them (sizes them on first use).
+  void clear_nodal_arrays();
+  /// Collects the nodes with positive mass after the particle-to-grid transfer.
+  void collect_active_nodes();
+  /// Runs f(I) for every active node, in parallel.
+  template <class F>
+  void for_active_nodes(const F &f) const;
 
   // Energy accounting.
   double external_work = 0, initial_total_energy = 0;
