@@ -68,6 +68,14 @@ const std::vector<BadInput> bad_inputs = {
     {{"Output/Verbosity=5"}, "Output/Verbosity"},
     {{"Verification/Exact velocity/Function expression=foo(x); 0"}, "Exact velocity"},
     {{"no equals sign"}, "expected 'Subsection/Entry=value'"},
+    {{"Material 1/Fracture/Model=eigenerosion",
+      "Material 1/Fracture/Energy release factor=0"},
+     "Energy release factor"},
+    {{"Material 1/Fracture/Model=eigensoftening",
+      "Material 1/Fracture/Tensile strength=0"},
+     "Tensile strength"},
+    {{"Material 1/Fracture/Model=eigenerosion", "Material 1/Fracture/Epsilon factor=0.3"},
+     "smaller than the particle spacing"},
 };
 } // namespace
 

@@ -20,6 +20,13 @@ void declare_fracture_parameters(ParameterHandler &prm)
   prm.declare_entry("Epsilon factor", "2", Patterns::Double(0),
                     "C_eps: the epsilon-neighbourhood radius is C_eps times the grid "
                     "spacing; > 0, and C_eps h should exceed the particle spacing.");
+  prm.declare_entry(
+      "Energy release factor", "1", Patterns::Double(0),
+      "Eigenerosion only: G_p = factor * eps * (volume-weighted mean energy density "
+      "over the neighbourhood), > 0 (the normalising constant C_eps of the paper's "
+      "eq. 13 is factor * eps). 1 makes a uniformly strained band one neighbourhood "
+      "wide release its stored energy; at a sharp crack tip the asymptotic field "
+      "needs about 7.2 (plane strain, nu = 1/3): doc/validation_mode_i.md.");
   prm.declare_entry("Fracture energy", "100", Patterns::Double(0),
                     "G_c (eigenerosion) or G_F (eigensoftening), N/m, > 0.");
   prm.declare_entry("Tensile strength", "3e6", Patterns::Double(0),
@@ -197,7 +204,8 @@ private:
 
 /**
  * Eigenerosion (Pandolfi & Ortiz 2012): a particle fails when the energy release
- * G_p = eps (sum V_q W_q) / (sum V_q) over its epsilon-neighbourhood exceeds G_c;
+ * G_p = c eps (sum V_q W_q) / (sum V_q) over its epsilon-neighbourhood exceeds G_c
+ * (c the 'Energy release factor', 1 by default);
  * it keeps its mass, loses its stress, and its stored energy counts as dissipated.
  */
 template <int dim>
@@ -211,6 +219,9 @@ public:
     eps = C_eps * c.grid_spacing;
     G_c = prm.get_double("Fracture energy");
     input::require_range(G_c, 0, 1e300, true, c.section + "/Fracture energy");
+    const double factor = prm.get_double("Energy release factor");
+    input::require_range(factor, 0, 1e6, true, c.section + "/Energy release factor");
+    release_length = factor * eps;
   }
 
   std::string name() const override { return "eigenerosion"; }
@@ -232,7 +243,7 @@ public:
           vw += P.initial_volume[*q] * F.energy_density[*q];
           v += P.initial_volume[*q];
         }
-      if (eps * vw > G_c * v)
+      if (release_length * vw > G_c * v)
       {
         P.failed[p] = 1;
         P.damage[p] = 1;
@@ -242,7 +253,7 @@ public:
   }
 
 private:
-  double eps = 0, G_c = 0;
+  double eps = 0, G_c = 0, release_length = 0;
 };
 } // namespace fracture
 } // namespace lme_mpm
