@@ -29,6 +29,48 @@ inline void exponentiate(double *v, const unsigned int n, const double shift)
     v[i] = std::exp(v[i] - shift);
 #endif
 }
+
+/**
+ * Raw moments sum w_I, sum w_I y_I and the upper triangle of sum w_I y_I y_I^T. In 2D
+ * the sums live in named scalars, which the compiler keeps in registers (summed into a
+ * Tensor they went through memory on every node); the arithmetic and its order are the
+ * generic loop's.
+ */
+template <int dim>
+inline void raw_moments(const double *w, const Tensor<1, dim> *y, const unsigned int n,
+                        double &Z, Tensor<1, dim> &r, Tensor<2, dim> &J)
+{
+  if constexpr (dim == 2)
+  {
+    double z = 0, r0 = 0, r1 = 0, j00 = 0, j01 = 0, j11 = 0;
+    for (unsigned int I = 0; I < n; ++I)
+    {
+      const double e = w[I], y0 = y[I][0], y1 = y[I][1];
+      z += e;
+      r0 += e * y0;
+      j00 += e * y0 * y0;
+      j01 += e * y0 * y1;
+      r1 += e * y1;
+      j11 += e * y1 * y1;
+    }
+    Z = z, r[0] = r0, r[1] = r1, J[0][0] = j00, J[0][1] = j01, J[1][1] = j11;
+  }
+  else
+  {
+    Z = 0, r = 0, J = 0;
+    for (unsigned int I = 0; I < n; ++I)
+    {
+      const double e = w[I];
+      Z += e;
+      for (unsigned int i = 0; i < dim; ++i)
+      {
+        r[i] += e * y[I][i];
+        for (unsigned int j = i; j < dim; ++j)
+          J[i][j] += e * y[I][i] * y[I][j];
+      }
+    }
+  }
+}
 } // namespace
 
 /**
@@ -272,20 +314,8 @@ public:
           f_max = std::max(f_max, N[I]);
         }
         exponentiate(N, n, f_max);
-        double Z = 0;
-        r        = 0;
-        J        = 0;
-        for (unsigned int I = 0; I < n; ++I)
-        {
-          const double e = N[I];
-          Z += e;
-          for (unsigned int i = 0; i < dim; ++i)
-          {
-            r[i] += e * y[I][i];
-            for (unsigned int j = i; j < dim; ++j)
-              J[i][j] += e * y[I][i] * y[I][j];
-          }
-        }
+        double Z;
+        raw_moments(N, y.data(), n, Z, r, J);
         const double inv_Z = 1 / Z;
         for (unsigned int I = 0; I < n; ++I)
           N[I] *= inv_Z;
@@ -346,21 +376,15 @@ public:
         // normalisation absorbs the common factor exactly.
         if (step.norm() * (radius_over_h + r.norm()) < cheap_step_limit)
         {
-          double S = 0;
-          Tensor<1, dim> r_new;
-          Tensor<2, dim> J_new;
           for (unsigned int I = 0; I < n; ++I)
           {
             const double t = step * (y[I] - r);
             N[I] *= 1 + t * (1 + t * (0.5 + t * (1. / 6)));
-            S += N[I];
-            for (unsigned int i = 0; i < dim; ++i)
-            {
-              r_new[i] += N[I] * y[I][i];
-              for (unsigned int j = i; j < dim; ++j)
-                J_new[i][j] += N[I] * y[I][i] * y[I][j];
-            }
           }
+          double S;
+          Tensor<1, dim> r_new;
+          Tensor<2, dim> J_new;
+          raw_moments(N, y.data(), n, S, r_new, J_new);
           const double inv_S = 1 / S;
           for (unsigned int I = 0; I < n; ++I)
             N[I] *= inv_S;
