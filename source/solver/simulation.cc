@@ -8,6 +8,7 @@
 #include <lme_mpm/solver/simulation.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -609,11 +610,13 @@ void Simulation<dim>::compute_connectivity()
 }
 
 template <int dim>
-void Simulation<dim>::update_slab_layers()
+std::pair<unsigned int, unsigned int>
+Simulation<dim>::support_reach(const std::size_t begin, const std::size_t end) const
 {
-  // Slab width for the colour-split scatter: how far supports reach across layers.
+  // How many cell layers the supports of [begin, end) reach below and above their
+  // particles' layers.
   unsigned int below = 0, above = 0;
-  for (std::size_t p = 0; p < store.size(); ++p)
+  for (std::size_t p = begin; p < end; ++p)
   {
     const unsigned int layer = background.cell_layer(store.cell[p]);
     const unsigned int *row  = &conn.nodes[p * conn.stride];
@@ -622,7 +625,15 @@ void Simulation<dim>::update_slab_layers()
     below                    = std::max(below, layer > lo ? layer - lo : 0u);
     above                    = std::max(above, hi > layer ? hi - layer : 0u);
   }
-  slab_layers = std::max(1u, below + above);
+  return {below, above};
+}
+
+template <int dim>
+void Simulation<dim>::update_slab_layers()
+{
+  // Slab width for the colour-split scatter: how far supports reach across layers.
+  const auto [below, above] = support_reach(0, store.size());
+  slab_layers               = std::max(1u, below + above);
 }
 
 template <int dim>
@@ -714,13 +725,25 @@ void Simulation<dim>::step()
     // only, not on the threads.
     const unsigned int width = slab_layers;
     conn.resize(n_p, shape_function->max_nodes_per_particle());
+    // A maximum does not depend on the order in which chunks report.
+    std::atomic<unsigned int> reach_below{0}, reach_above{0};
+    const auto raise = [](std::atomic<unsigned int> &m, const unsigned int v)
+    {
+      unsigned int seen = m.load();
+      while (v > seen && !m.compare_exchange_weak(seen, v))
+      {
+      }
+    };
     scatter_chunks(
         [&](const std::size_t b, const std::size_t e)
         {
           shape_function->compute(store, b, e, conn);
           particle_to_grid(b, e);
+          const auto [below, above] = support_reach(b, e);
+          raise(reach_below, below);
+          raise(reach_above, above);
         });
-    update_slab_layers();
+    slab_layers = std::max(1u, reach_below.load() + reach_above.load());
     if (slab_layers > width)
     {
       collect_active_nodes();

@@ -20,6 +20,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lme_mpm
@@ -95,6 +96,8 @@ private:
   void locate_and_sort();
   void compute_connectivity();
   void update_slab_layers();
+  std::pair<unsigned int, unsigned int> support_reach(std::size_t begin,
+                                                      std::size_t end) const;
   /// Calls f(p) for every particle, in an order that adds to each node in a way
   /// independent of the thread count (two colours of slabs of cell layers).
   template <class F>
