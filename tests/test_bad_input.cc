@@ -246,4 +246,28 @@ TEST(Checkpoint, ResumedRunEndsBitwiseIdentical)
     EXPECT_NE(lme_mpm::input::concise_message(e).find("--resume"), std::string::npos)
         << lme_mpm::input::concise_message(e);
   }
+
+  // So is a checkpoint in another format version, and a file that is no checkpoint.
+  const auto refused = [&](const std::string &bytes, const std::string &expected)
+  {
+    {
+      std::ofstream f(b + "/checkpoint.bin", std::ios::binary);
+      f << bytes;
+    }
+    try
+    {
+      lme_mpm::run_parameter_file(prm, with({}, b), quiet, b);
+      ADD_FAILURE() << "resumed from '" << bytes << "'";
+    }
+    catch (const std::exception &e)
+    {
+      EXPECT_NE(lme_mpm::input::concise_message(e).find(expected), std::string::npos)
+          << lme_mpm::input::concise_message(e);
+    }
+  };
+  std::string other_version = file_text(b + "/checkpoint.bin.prev");
+  ASSERT_GE(other_version.size(), 8u);
+  other_version[7] = '1'; // the format before this one
+  refused(other_version, "written by another version");
+  refused("not a checkpoint", "is not an lme-mpm checkpoint");
 }

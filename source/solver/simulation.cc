@@ -1181,8 +1181,14 @@ void Simulation<dim>::resume_from(const std::string &directory)
   AssertThrow(in, ExcBadInput("--resume", "no checkpoint '" + file + "'"));
   char magic[8];
   in.read(magic, 8);
-  AssertThrow(in && std::string(magic, 8) == std::string(checkpoint_magic, 8),
+  AssertThrow(in && std::string(magic, 7) == std::string(checkpoint_magic, 7),
               ExcBadInput("--resume", "'" + file + "' is not an lme-mpm checkpoint"));
+  AssertThrow(std::string(magic, 8) == std::string(checkpoint_magic, 8),
+              ExcBadInput("--resume", "'" + file +
+                                          "' was written by another version of " +
+                                          "lme-mpm (format " + std::string(magic + 7, 1) +
+                                          ", this one reads " +
+                                          std::string(checkpoint_magic + 7, 1) + ")"));
   std::uint32_t file_dim = 0, file_steps = 0, file_step = 0;
   std::uint64_t n = 0;
   double file_dt  = 0;
