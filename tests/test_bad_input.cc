@@ -195,6 +195,16 @@ std::string checksum(const std::string &dir)
   const auto pos      = s.find("\"state_checksum\": \"");
   return pos == std::string::npos ? "" : s.substr(pos + 19, 16);
 }
+/// extra, then the scene's settings, then the output directory.
+std::vector<std::string> with_settings(const std::vector<std::string> &scene,
+                                       std::vector<std::string> extra,
+                                       const std::string &dir)
+{
+  extra.insert(extra.end(), scene.begin(), scene.end());
+  extra.push_back("Output/Directory=" + dir);
+  return extra;
+}
+
 } // namespace
 
 TEST(Checkpoint, ResumedRunEndsBitwiseIdentical)
@@ -213,12 +223,8 @@ TEST(Checkpoint, ResumedRunEndsBitwiseIdentical)
   const std::string a                  = lme_mpm_test::scratch("ckpt_a"),
                     b                  = lme_mpm_test::scratch("ckpt_b");
   std::ostringstream quiet;
-  auto with = [&](std::vector<std::string> extra, const std::string &dir)
-  {
-    extra.insert(extra.end(), scene.begin(), scene.end());
-    extra.push_back("Output/Directory=" + dir);
-    return extra;
-  };
+  auto with = [&](const std::vector<std::string> &extra, const std::string &dir)
+  { return with_settings(scene, extra, dir); };
   const auto full = lme_mpm::run_parameter_file(prm, with({}, a), quiet);
   lme_mpm::run_parameter_file(prm, with({"Checkpoint/Every steps=1000"}, b), quiet);
   ASSERT_TRUE(std::filesystem::exists(b + "/checkpoint.bin"));
@@ -274,40 +280,41 @@ TEST(Checkpoint, ResumedRunEndsBitwiseIdentical)
 
 TEST(Checkpoint, TooNarrowSlabsAreRedone)
 {
-  // The slab width of the fused particle-to-grid pass comes from the previous step;
-  // where this step's supports reach further, the transfer is redone with wider slabs.
-  // A checkpoint whose stored width (after magic, dim, size, dt, steps, t and step:
-  // byte 44) is set to one forces that path on the first resumed step, with the
-  // threads racing in the too-narrow first pass: the result must still be the
-  // uninterrupted run's, bit for bit.
-  const std::vector<std::string> scene = {"Time/End time=1", "Output/Verbosity=0",
-                                          "Output/Write particle files=false",
-                                          "Output/Output interval=0.25"};
-  const std::string prm                = lme_mpm_test::scene("two_disk_collision.prm");
-  const std::string a                  = lme_mpm_test::scratch("slab_a"),
-                    b                  = lme_mpm_test::scratch("slab_b");
+  // The slab width of the fused particle-to-grid pass is the supports' reach so
+  // far; a chunk reaching further does not scatter, and the transfer is redone with
+  // the wider reach. A checkpoint whose stored reach (after magic, dim, size, dt,
+  // steps, t and step: bytes 44 and 48, below and above) is cut by one layer in one
+  // direction forces that path on the first resumed step. On the graded grid only
+  // the supports of coarse cells next to the fine half reach the extra layer, so
+  // the other chunks scatter before the redo, whose sums must be cleared: the result
+  // must still be the uninterrupted run's, bit for bit.
+  const std::vector<std::string> scene = {
+      "Grid/Step sizes y=20*0.025, 40*0.0125", "Time/End time=1", "Output/Verbosity=0",
+      "Output/Write particle files=false", "Output/Output interval=0.25"};
+  const std::string prm = lme_mpm_test::scene("two_disk_collision.prm");
+  const std::string a   = lme_mpm_test::scratch("slab_a"),
+                    b   = lme_mpm_test::scratch("slab_b");
   std::ostringstream quiet;
-  auto with = [&](std::vector<std::string> extra, const std::string &dir)
-  {
-    extra.insert(extra.end(), scene.begin(), scene.end());
-    extra.push_back("Output/Directory=" + dir);
-    return extra;
-  };
-  lme_mpm::run_parameter_file(prm, with({}, a), quiet);
-  lme_mpm::run_parameter_file(prm, with({"Checkpoint/Every steps=40"}, b), quiet);
-  ASSERT_TRUE(std::filesystem::exists(b + "/checkpoint.bin"));
-  {
-    std::fstream f(b + "/checkpoint.bin",
-                   std::ios::in | std::ios::out | std::ios::binary);
-    std::uint32_t width = 0;
-    f.seekg(44);
-    f.read(reinterpret_cast<char *>(&width), sizeof width);
-    ASSERT_GT(width, 1u); // LME supports span several cell layers
-    width = 1;
-    f.seekp(44);
-    f.write(reinterpret_cast<const char *>(&width), sizeof width);
-  }
-  lme_mpm::run_parameter_file(prm, with({"Checkpoint/Every steps=40"}, b), quiet, b);
+  lme_mpm::run_parameter_file(prm, with_settings(scene, {}, a), quiet);
   EXPECT_FALSE(checksum(a).empty());
-  EXPECT_EQ(checksum(a), checksum(b));
+  for (const unsigned int direction : {0, 1}) // below, above
+  {
+    const auto checkpointed = with_settings(scene, {"Checkpoint/Every steps=100"}, b);
+    lme_mpm::run_parameter_file(prm, checkpointed, quiet);
+    ASSERT_TRUE(std::filesystem::exists(b + "/checkpoint.bin"));
+    {
+      std::fstream f(b + "/checkpoint.bin",
+                     std::ios::in | std::ios::out | std::ios::binary);
+      std::uint32_t reach[2] = {0, 0};
+      f.seekg(44);
+      f.read(reinterpret_cast<char *>(reach), sizeof reach);
+      ASSERT_GT(reach[direction], 0u);
+      --reach[direction];
+      f.seekp(44);
+      f.write(reinterpret_cast<const char *>(reach), sizeof reach);
+    }
+    lme_mpm::run_parameter_file(prm, checkpointed, quiet, b);
+    EXPECT_EQ(checksum(a), checksum(b))
+        << "reach cut " << (direction ? "above" : "below");
+  }
 }

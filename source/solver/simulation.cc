@@ -601,15 +601,6 @@ void Simulation<dim>::locate_and_sort()
 }
 
 template <int dim>
-void Simulation<dim>::compute_connectivity()
-{
-  const std::size_t n = store.size();
-  conn.resize(n, shape_function->max_nodes_per_particle());
-  parallel::for_range(n, [&](const std::size_t b, const std::size_t e)
-                      { shape_function->compute(store, b, e, conn); });
-}
-
-template <int dim>
 std::pair<unsigned int, unsigned int>
 Simulation<dim>::support_reach(const std::size_t begin, const std::size_t end) const
 {
@@ -629,14 +620,6 @@ Simulation<dim>::support_reach(const std::size_t begin, const std::size_t end) c
 }
 
 template <int dim>
-void Simulation<dim>::update_slab_layers()
-{
-  // Slab width for the colour-split scatter: how far supports reach across layers.
-  const auto [below, above] = support_reach(0, store.size());
-  slab_layers               = std::max(1u, below + above);
-}
-
-template <int dim>
 template <class F>
 void Simulation<dim>::scatter(const F &f)
 {
@@ -652,12 +635,14 @@ template <int dim>
 template <class F>
 void Simulation<dim>::scatter_chunks(const F &f)
 {
-  // Slabs of `slab_layers` cell layers; slabs of one colour touch disjoint nodes, so
-  // they run concurrently, each in particle order: sums do not depend on threads.
+  // Slabs of slab_below + slab_above cell layers: every scattering particle's support
+  // lies within slab_below layers below and slab_above above its own, so slabs of one
+  // colour touch disjoint nodes and run concurrently, each in particle order: sums do
+  // not depend on threads.
   const auto &offsets         = store.cell_offsets();
   const unsigned int cpl      = background.cells_per_layer();
   const unsigned int n_layers = background.n_cells_in(dim - 1);
-  const unsigned int w        = slab_layers;
+  const unsigned int w        = std::max(1u, slab_below + slab_above);
   const unsigned int n_slabs  = (n_layers + w - 1) / w;
   auto run_slab               = [&](const unsigned int s)
   {
@@ -710,48 +695,39 @@ void Simulation<dim>::step()
       }
     }
   };
+  // Each chunk gets its shape functions and scatters them while they are in cache,
+  // in slabs sized by the reach of the supports so far. A chunk whose supports reach
+  // further does not scatter (so no two threads can meet on a node); the reach is
+  // then widened and the whole transfer repeated, which happens on the first step
+  // and where supports grow. The order depends on the particles only, not on the
+  // threads.
   clear_nodal_arrays();
-  if (slab_layers == 0) // first step: no slab width yet
+  conn.resize(n_p, shape_function->max_nodes_per_particle());
+  const unsigned int below = slab_below, above = slab_above;
+  std::atomic<unsigned int> reach_below{below}, reach_above{above};
+  const auto raise = [](std::atomic<unsigned int> &m, const unsigned int v)
   {
-    compute_connectivity();
-    update_slab_layers();
-    scatter_chunks(particle_to_grid);
-  }
-  else
-  {
-    // Each chunk's connectivity is scattered while in cache, in slabs as wide as
-    // the last step's supports; should this step's reach further, the transfer is
-    // repeated with the wider slabs. Either way the order depends on the particles
-    // only, not on the threads.
-    const unsigned int width = slab_layers;
-    conn.resize(n_p, shape_function->max_nodes_per_particle());
-    // A maximum does not depend on the order in which chunks report.
-    std::atomic<unsigned int> reach_below{0}, reach_above{0};
-    const auto raise = [](std::atomic<unsigned int> &m, const unsigned int v)
+    unsigned int seen = m.load();
+    while (v > seen && !m.compare_exchange_weak(seen, v))
     {
-      unsigned int seen = m.load();
-      while (v > seen && !m.compare_exchange_weak(seen, v))
-      {
-      }
-    };
-    scatter_chunks(
-        [&](const std::size_t b, const std::size_t e)
-        {
-          shape_function->compute(store, b, e, conn);
-          particle_to_grid(b, e);
-          const auto [below, above] = support_reach(b, e);
-          raise(reach_below, below);
-          raise(reach_above, above);
-        });
-    slab_layers = std::max(1u, reach_below.load() + reach_above.load());
-    if (slab_layers > width)
-    {
-      collect_active_nodes();
-      clear_nodal_arrays();
-      scatter_chunks(particle_to_grid);
     }
-    else
-      slab_layers = width; // the width used, kept for bitwise restarts
+  };
+  scatter_chunks(
+      [&](const std::size_t b, const std::size_t e)
+      {
+        shape_function->compute(store, b, e, conn);
+        const auto [chunk_below, chunk_above] = support_reach(b, e);
+        if (chunk_below <= below && chunk_above <= above)
+          particle_to_grid(b, e);
+        raise(reach_below, chunk_below);
+        raise(reach_above, chunk_above);
+      });
+  if (reach_below.load() > below || reach_above.load() > above)
+  {
+    slab_below = reach_below.load(), slab_above = reach_above.load();
+    collect_active_nodes();
+    clear_nodal_arrays();
+    scatter_chunks(particle_to_grid);
   }
 
   collect_active_nodes();
@@ -977,12 +953,14 @@ void Simulation<dim>::step()
 template <int dim>
 void Simulation<dim>::clear_nodal_arrays()
 {
-  const unsigned int n_n = background.n_nodes();
+  const unsigned int n_n   = background.n_nodes();
+  const auto vector_fields = {&nodal_momentum, &nodal_mass_acceleration, &nodal_rate,
+                              &nodal_force,    &nodal_acceleration,      &nodal_rhs,
+                              &nodal_scratch};
   if (nodal_mass.size() != n_n)
   {
     nodal_mass.assign(n_n, 0.0);
-    for (auto *v : {&nodal_momentum, &nodal_mass_acceleration, &nodal_rate, &nodal_force,
-                    &nodal_acceleration, &nodal_rhs, &nodal_scratch})
+    for (auto *v : vector_fields)
       v->assign(n_n, Tensor<1, dim>());
     active_nodes.clear();
     return;
@@ -990,8 +968,7 @@ void Simulation<dim>::clear_nodal_arrays()
   auto clear = [&](const unsigned int I)
   {
     nodal_mass[I] = 0;
-    for (auto *v : {&nodal_momentum, &nodal_mass_acceleration, &nodal_rate, &nodal_force,
-                    &nodal_acceleration, &nodal_rhs, &nodal_scratch})
+    for (auto *v : vector_fields)
       (*v)[I] = Tensor<1, dim>();
   };
   for_active_nodes(clear);
@@ -1149,7 +1126,8 @@ void Simulation<dim>::write_checkpoint()
     put(out, std::uint32_t(n_steps));
     put(out, t);
     put(out, std::uint32_t(step_count));
-    put(out, std::uint32_t(slab_layers));
+    put(out, std::uint32_t(slab_below));
+    put(out, std::uint32_t(slab_above));
     for (const double v :
          {external_work, initial_total_energy, energy_scale, max_energy_drift,
           next_output_time, peak_force, displacement_at_peak, max_error_displacement,
@@ -1206,10 +1184,11 @@ void Simulation<dim>::resume_from(const std::string &directory)
               ExcBadInput("--resume", mismatch.str()));
   get(in, t);
   get(in, file_step);
-  step_count                     = file_step;
-  std::uint32_t file_slab_layers = 0;
-  get(in, file_slab_layers);
-  slab_layers = file_slab_layers;
+  step_count               = file_step;
+  std::uint32_t file_below = 0, file_above = 0;
+  get(in, file_below);
+  get(in, file_above);
+  slab_below = file_below, slab_above = file_above;
   for (double *v :
        {&external_work, &initial_total_energy, &energy_scale, &max_energy_drift,
         &next_output_time, &peak_force, &displacement_at_peak, &max_error_displacement,

@@ -94,8 +94,6 @@ private:
   void setup_particles(ParameterHandler &prm, const ParameterCounts &counts);
   void setup_time_step(ParameterHandler &prm);
   void locate_and_sort();
-  void compute_connectivity();
-  void update_slab_layers();
   std::pair<unsigned int, unsigned int> support_reach(std::size_t begin,
                                                       std::size_t end) const;
   /// Calls f(p) for every particle, in an order that adds to each node in a way
@@ -151,7 +149,9 @@ private:
   unsigned int peak_constraint = numbers::invalid_unsigned_int, peak_component = 0;
   double peak_force = -std::numeric_limits<double>::max(), displacement_at_peak = 0;
   Connectivity<dim> conn;
-  unsigned int slab_layers = 0; ///< 0 until the first connectivity
+  // How many cell layers the shape-function supports have reached below and above
+  // their particles' layers so far (the slab width of the coloured scatter).
+  unsigned int slab_below = 0, slab_above = 0;
 
   // Nodal fields (lexicographic node index).
   std::vector<double> nodal_mass;
