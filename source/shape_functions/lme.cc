@@ -492,7 +492,9 @@ public:
         {"lme_newton_iterations", iterations},
         {"lme_mean_newton_iterations", solves > 0 ? iterations / solves : 0.0},
         {"lme_max_newton_iterations", double(max_iterations_seen.load())},
+        {"lme_evaluations", double(n_evaluations.load())},
         {"lme_mean_evaluations", solves > 0 ? n_evaluations.load() / solves : 0.0},
+        {"lme_polynomial_steps", double(n_cheap_steps.load())},
         {"lme_mean_polynomial_steps", solves > 0 ? n_cheap_steps.load() / solves : 0.0}};
   }
 
