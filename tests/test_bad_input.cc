@@ -76,6 +76,11 @@ const std::vector<BadInput> bad_inputs = {
      "Tensile strength"},
     {{"Material 1/Fracture/Model=eigenerosion", "Material 1/Fracture/Epsilon factor=0.3"},
      "smaller than the particle spacing"},
+    {{"Cracks/Polylines=0, 0.5, 0.25"},
+     "Cracks/Polylines': '0, 0.5, 0.25' needs an even"},
+    {{"Cracks/Polylines=0, 0.5, 0.25, 0.5; 0, 0.6"}, "'0, 0.6' needs an even number"},
+    {{"Cracks/Polylines=0, 0.5, 0, 0.5"}, "repeats a point"},
+    {{"Cracks/Polylines=0, 0.5, 0.2, x"}, "Cracks/Polylines"},
 };
 } // namespace
 
@@ -182,19 +187,8 @@ TEST(Documentation, ParametersPageIsCurrent)
 
 namespace
 {
-std::string file_text(const std::string &path)
-{
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-std::string checksum(const std::string &dir)
-{
-  const std::string s = file_text(dir + "/summary.json");
-  const auto pos      = s.find("\"state_checksum\": \"");
-  return pos == std::string::npos ? "" : s.substr(pos + 19, 16);
-}
+using lme_mpm_test::checksum;
+using lme_mpm_test::file_text;
 /// extra, then the scene's settings, then the output directory.
 std::vector<std::string> with_settings(const std::vector<std::string> &scene,
                                        std::vector<std::string> extra,

@@ -62,15 +62,11 @@ BarResult run_bar(const double h, std::vector<std::string> extra)
   std::ostringstream quiet;
   const auto s = run_parameter_file(lme_mpm_test::scene("tension_bar.prm"), o, quiet);
 
-  std::ifstream in(dir + "/history.csv");
-  std::string line;
-  std::getline(in, line);
-  const std::vector<std::string> names = lme_mpm::input::split(line, ',');
-  const auto col                       = [&](const std::string &n)
+  const auto history = lme_mpm_test::read_history(dir);
+  const auto &names  = history.first;
+  const auto &rows   = history.second;
+  const auto col     = [&](const std::string &n)
   { return std::find(names.begin(), names.end(), n) - names.begin(); };
-  std::vector<std::vector<double>> rows;
-  while (std::getline(in, line))
-    rows.push_back(lme_mpm::input::parse_doubles(line, "history.csv"));
   const auto i_force = col("force_right_x"), i_diss = col("dissipated_energy");
   const double area = 0.005 * h, diss = rows.back()[i_diss];
   BarResult r;

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
@@ -19,14 +20,51 @@ inline std::string scene(const std::string &name)
   return std::string(LME_MPM_SOURCE_DIR) + "/prm/" + name;
 }
 
-/// A fresh scratch directory for one test's output.
-inline std::string scratch(const std::string &name)
+/// The scratch directory of one test's output (see scratch()).
+inline std::string scratch_path(const std::string &name)
 {
   // The process id keeps tests that ctest runs side by side apart.
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("lme_mpm_test_" + std::to_string(::getpid()) + "_" + name);
+  return (std::filesystem::temp_directory_path() /
+          ("lme_mpm_test_" + std::to_string(::getpid()) + "_" + name))
+      .string();
+}
+
+/// A fresh (emptied) scratch directory for one test's output.
+inline std::string scratch(const std::string &name)
+{
+  const std::string dir = scratch_path(name);
   std::filesystem::remove_all(dir);
-  return dir.string();
+  return dir;
+}
+
+inline std::string file_text(const std::string &path)
+{
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// The state checksum a run wrote to summary.json ("" if none).
+inline std::string checksum(const std::string &dir)
+{
+  const std::string s = file_text(dir + "/summary.json");
+  const auto pos      = s.find("\"state_checksum\": \"");
+  return pos == std::string::npos ? "" : s.substr(pos + 19, 16);
+}
+
+/// history.csv of an output directory: the column names and the rows.
+inline std::pair<std::vector<std::string>, std::vector<std::vector<double>>>
+read_history(const std::string &dir)
+{
+  std::ifstream in(dir + "/history.csv");
+  std::string line;
+  std::getline(in, line);
+  std::pair<std::vector<std::string>, std::vector<std::vector<double>>> h;
+  h.first = lme_mpm::input::split(line, ',');
+  while (std::getline(in, line))
+    h.second.push_back(lme_mpm::input::parse_doubles(line, dir + "/history.csv"));
+  return h;
 }
 
 /// Runs a scene quietly with overrides; output into a scratch directory.

@@ -39,6 +39,10 @@ public:
 
   std::string name() const override { return "bspline"; }
   unsigned int max_nodes_per_particle() const override { return 1u << (2 * dim); }
+  double support_radius(const BackgroundGrid<dim> &g) const override
+  {
+    return 2 * this->largest_cell_diagonal(g); // support 2 h per direction
+  }
 
   void compute(ParticleStore<dim> &particles, const std::size_t begin,
                const std::size_t end, Connectivity<dim> &conn) const override

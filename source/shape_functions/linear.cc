@@ -38,6 +38,10 @@ public:
 
   std::string name() const override { return "linear"; }
   unsigned int max_nodes_per_particle() const override { return 1u << dim; }
+  double support_radius(const BackgroundGrid<dim> &g) const override
+  {
+    return this->largest_cell_diagonal(g); // the far corner of the particle's cell
+  }
 
   void compute(ParticleStore<dim> &particles, const std::size_t begin,
                const std::size_t end, Connectivity<dim> &conn) const override

@@ -143,9 +143,9 @@ public:
       }
       h_local_max = std::min(h_local_max, h_max_d[d]);
     }
-    const double R_max = radius_over_h * h_local_max;
-    max_nodes          = 1;
-    max_box_1d         = 0;
+    R_max      = radius_over_h * h_local_max;
+    max_nodes  = 1;
+    max_box_1d = 0;
     for (unsigned int d = 0; d < dim; ++d)
     {
       // Nodes of direction d within [x - R, x + R].
@@ -162,6 +162,7 @@ public:
 
   std::string name() const override { return "lme"; }
   unsigned int max_nodes_per_particle() const override { return max_nodes; }
+  double support_radius(const BackgroundGrid<dim> &) const override { return R_max; }
 
   void compute(ParticleStore<dim> &particles, const std::size_t begin,
                const std::size_t end, Connectivity<dim> &conn) const override
@@ -531,6 +532,7 @@ private:
   const double newton_tol;
   const unsigned int max_iterations;
   const double radius_over_h; ///< support radius R / h
+  double R_max = 0;           ///< largest support radius on this grid
   unsigned int max_nodes;
   unsigned int max_box_1d;
 

@@ -44,6 +44,15 @@ public:
 
   std::string name() const override { return "ugimp"; }
   unsigned int max_nodes_per_particle() const override { return max_nodes; }
+  double support_radius(const BackgroundGrid<dim> &g) const override
+  {
+    // h plus the box half-width (at most h / 2) per direction; a box reaching a
+    // third cell of a graded direction is within two cells.
+    bool uniform = true;
+    for (unsigned int d = 0; d < dim; ++d)
+      uniform = uniform && g.is_uniform(d);
+    return (uniform ? 1.5 : 2.0) * this->largest_cell_diagonal(g);
+  }
 
   void compute(ParticleStore<dim> &particles, const std::size_t begin,
                const std::size_t end, Connectivity<dim> &conn) const override

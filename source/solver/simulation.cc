@@ -107,6 +107,7 @@ void Simulation<dim>::declare_parameters(ParameterHandler &prm,
   prm.leave_subsection();
 
   BackgroundGrid<dim>::declare_parameters(prm);
+  CrackSet<dim>::declare_parameters(prm);
 
   prm.enter_subsection("Time");
   prm.declare_entry("End time", "1", Patterns::Double(0), "Simulated time (s), > 0.");
@@ -284,6 +285,7 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
   prm.leave_subsection();
 
   background.parse_parameters(prm);
+  cracks.parse_parameters(prm);
 
   for (unsigned int m = 0; m < counts.materials; ++m)
   {
@@ -332,6 +334,11 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
   shape_function =
       ShapeFunctionRegistry<dim>::instance().create(prm.get("Type"), prm, sf_context);
   prm.leave_subsection();
+  if (!cracks.empty())
+  {
+    crack_reach = shape_function->support_radius(background);
+    cracks.assign_fields(background, crack_reach);
+  }
 
   prm.enter_subsection("Boundary conditions");
   for (unsigned int c = 0; c < counts.constraints; ++c)
@@ -469,7 +476,8 @@ void Simulation<dim>::setup_particles(ParameterHandler &prm,
     for (const auto &h : input::split(prm.get("Holes"), ';'))
       holes.push_back(geometries.create(h, section + "/Holes"));
     const unsigned int n_per_dir = prm.get_integer("Particles per cell direction");
-    const std::string placement  = prm.get("Particle placement");
+    particle_spacing = std::min(particle_spacing, background.min_spacing() / n_per_dir);
+    const std::string placement = prm.get("Particle placement");
     Functions::ParsedFunction<dim> velocity(dim);
     parse_function(prm, "Initial velocity", velocity, section + "/Initial velocity");
     prm.leave_subsection();
@@ -675,6 +683,10 @@ void Simulation<dim>::step()
   const std::size_t n_p = store.size();
   const double t_half = t + 0.5 * dt, t_new = t + dt;
 
+  // A crack that grew with last step's failures separates the field along its new
+  // part from this step on.
+  if (fracture_active && cracks.grow(store, particle_spacing))
+    cracks.assign_fields(background, crack_reach);
   locate_and_sort();
 
   // Particle to grid: mass, momentum and mass-weighted acceleration.
@@ -703,6 +715,8 @@ void Simulation<dim>::step()
   // threads.
   clear_nodal_arrays();
   conn.resize(n_p, shape_function->max_nodes_per_particle());
+  if (!cracks.empty())
+    touches_crack.resize(n_p);
   const unsigned int below = slab_below, above = slab_above;
   std::atomic<unsigned int> reach_below{below}, reach_above{above};
   const auto raise = [](std::atomic<unsigned int> &m, const unsigned int v)
@@ -717,6 +731,7 @@ void Simulation<dim>::step()
       {
         shape_function->compute(store, b, e, conn);
         const auto [chunk_below, chunk_above] = support_reach(b, e);
+        cracks.separate(store, background, conn, b, e, touches_crack.data());
         if (chunk_below <= below && chunk_above <= above)
           particle_to_grid(b, e);
         raise(reach_below, chunk_below);
@@ -748,11 +763,18 @@ void Simulation<dim>::step()
       for (unsigned int i = 0; i < c->nodes().size(); ++i)
       {
         const Tensor<1, dim> v = c->velocity(i, t_half);
+        const unsigned int I   = c->nodes()[i];
+        const unsigned int J   = cracks.second_field(I);
         for (unsigned int d = 0; d < dim; ++d)
           if (c->constrains(d))
-            x[c->nodes()[i]][d] = v[d];
+          {
+            x[I][d] = v[d];
+            if (J != numbers::invalid_unsigned_int)
+              x[background.n_nodes() + J][d] = v[d];
+          }
       }
   };
+  crack_face_contact(nodal_rate, nullptr);
   constrain_rate(nodal_rate);
   if (mass_corrections > 0)
   {
@@ -849,11 +871,18 @@ void Simulation<dim>::step()
       for (unsigned int i = 0; i < c->nodes().size(); ++i)
       {
         const Tensor<1, dim> dv = c->velocity(i, t_new) - c->velocity(i, t);
+        const unsigned int I    = c->nodes()[i];
+        const unsigned int J    = cracks.second_field(I);
         for (unsigned int d = 0; d < dim; ++d)
           if (c->constrains(d))
-            x[c->nodes()[i]][d] = dv[d] / dt;
+          {
+            x[I][d] = dv[d] / dt;
+            if (J != numbers::invalid_unsigned_int)
+              x[background.n_nodes() + J][d] = dv[d] / dt;
+          }
       }
   };
+  crack_face_contact(nodal_acceleration, &nodal_rate);
   constrain_acceleration(nodal_acceleration);
   // The reaction is what the constraint adds to the force: (M a - f) on its nodes.
   const std::vector<Tensor<1, dim>> *mass_times_acceleration = nullptr;
@@ -877,13 +906,23 @@ void Simulation<dim>::step()
     for (unsigned int i = 0; i < c->nodes().size(); ++i)
     {
       const unsigned int I = c->nodes()[i];
+      const unsigned int J = cracks.second_field(I);
+      // A constrained node's second field (a crack reaching the set) is constrained
+      // with it; its reaction adds to the node's.
+      const auto reaction_at = [&](const unsigned int K, const unsigned int d)
+      {
+        const double ma = mass_times_acceleration
+                              ? (*mass_times_acceleration)[K][d]
+                              : nodal_mass[K] * nodal_acceleration[K][d];
+        return ma - nodal_force[K][d];
+      };
       for (unsigned int d = 0; d < dim; ++d)
         if (c->constrains(d))
         {
-          const double ma = mass_times_acceleration
-                                ? (*mass_times_acceleration)[I][d]
-                                : nodal_mass[I] * nodal_acceleration[I][d];
-          const double r  = ma - nodal_force[I][d];
+          const double r =
+              reaction_at(I, d) + (J != numbers::invalid_unsigned_int
+                                       ? reaction_at(background.n_nodes() + J, d)
+                                       : 0.0);
           c->reaction[d] += r;
           work += 0.5 * (c->node_reaction[i][d] + r) * dt * nodal_rate[I][d];
           c->node_reaction[i][d] = r;
@@ -953,7 +992,7 @@ void Simulation<dim>::step()
 template <int dim>
 void Simulation<dim>::clear_nodal_arrays()
 {
-  const unsigned int n_n   = background.n_nodes();
+  const unsigned int n_n   = background.n_nodes() + cracks.n_extra_nodes();
   const auto vector_fields = {&nodal_momentum, &nodal_mass_acceleration, &nodal_rate,
                               &nodal_force,    &nodal_acceleration,      &nodal_rhs,
                               &nodal_scratch};
@@ -972,10 +1011,15 @@ void Simulation<dim>::clear_nodal_arrays()
       (*v)[I] = Tensor<1, dim>();
   };
   for_active_nodes(clear);
-  // Constraints write their values on nodes that may hold no mass.
+  // Constraints write their values on nodes (and their crack fields) that may hold no
+  // mass.
   for (const auto &c : constraints)
     for (const unsigned int I : c->nodes())
+    {
       clear(I);
+      if (cracks.second_field(I) != numbers::invalid_unsigned_int)
+        clear(background.n_nodes() + cracks.second_field(I));
+    }
 }
 
 template <int dim>
@@ -983,11 +1027,72 @@ void Simulation<dim>::collect_active_nodes()
 {
   // A scan of the mass array: a few hundred kilobytes even for large grids, far less
   // than clearing and updating every nodal array over the whole grid.
-  const unsigned int n_n = background.n_nodes();
+  const unsigned int n_n = nodal_mass.size();
   active_nodes.clear();
   for (unsigned int I = 0; I < n_n; ++I)
     if (nodal_mass[I] != 0)
       active_nodes.push_back(I);
+}
+
+template <int dim>
+void Simulation<dim>::crack_face_contact(std::vector<Tensor<1, dim>> &x,
+                                         const std::vector<Tensor<1, dim>> *rate)
+{
+  // Frictionless contact of the two fields of a node where the faces have closed (the
+  // fields' mean displacements no longer open the crack) and approach each other along
+  // its normal: both take the mass-weighted mean normal velocity, which conserves
+  // momentum. Called on the displacement rate (rate == nullptr), then on the
+  // acceleration with the trial end-of-step velocity rate + gamma dt a, so that faces
+  // pulled apart by their forces separate even when their rates were made equal.
+  if (!cracks.face_contact() || cracks.n_extra_nodes() == 0)
+    return;
+  const unsigned int n_grid = background.n_nodes();
+  if (!rate)
+  {
+    // Mass-weighted particle displacements of each field of the crack nodes.
+    nodal_displacement.assign(nodal_mass.size(), Tensor<1, dim>());
+    scatter(
+        [&](const std::size_t p)
+        {
+          if (!touches_crack[p])
+            return;
+          const std::size_t o = p * conn.stride;
+          const Tensor<1, dim> u =
+              store.mass[p] * (store.position[p] - store.reference_position[p]);
+          for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+          {
+            const unsigned int K = conn.nodes[o + k];
+            if (K >= n_grid || cracks.second_field(K) != numbers::invalid_unsigned_int)
+              nodal_displacement[K] += conn.N[o + k] * u;
+          }
+        });
+    faces_closed.assign(cracks.n_extra_nodes(), 0);
+    for (unsigned int J = 0; J < cracks.n_extra_nodes(); ++J)
+    {
+      const unsigned int I = cracks.primary_of(J), K = n_grid + J;
+      const double mI = nodal_mass[I], mK = nodal_mass[K];
+      faces_closed[J] = mI > mass_tolerance && mK > mass_tolerance &&
+                        (nodal_displacement[I] / mI - nodal_displacement[K] / mK) *
+                                cracks.normal_of(J) >=
+                            0;
+    }
+  }
+  const double scale = rate ? newmark.gamma * dt : 1.0;
+  for (unsigned int J = 0; J < cracks.n_extra_nodes(); ++J)
+  {
+    if (!faces_closed[J])
+      continue;
+    const unsigned int I = cracks.primary_of(J), K = n_grid + J;
+    const Tensor<1, dim> &n = cracks.normal_of(J);
+    const double mI = nodal_mass[I], mK = nodal_mass[K];
+    const double vI = rate ? ((*rate)[I] + scale * x[I]) * n : x[I] * n;
+    const double vK = rate ? ((*rate)[K] + scale * x[K]) * n : x[K] * n;
+    if (!(vI > vK))
+      continue;
+    const double mean = (mI * vI + mK * vK) / (mI + mK);
+    x[I] += ((mean - vI) / scale) * n;
+    x[K] += ((mean - vK) / scale) * n;
+  }
 }
 
 template <int dim>
@@ -1055,7 +1160,7 @@ void Simulation<dim>::correct_towards_consistent_mass(
 
 namespace
 {
-const char checkpoint_magic[9] = "LMEMPMC2";
+const char checkpoint_magic[9] = "LMEMPMC3";
 
 template <class T>
 void put(std::ostream &out, const T &v)
@@ -1144,6 +1249,7 @@ void Simulation<dim>::write_checkpoint()
     put_records(out, output->particle_series());
     put_records(out, output->grid_series());
     store.for_each_field([&](auto &field) { put_vector(out, field); });
+    cracks.write(out);
     AssertThrow(out, ExcMessage("Writing the checkpoint '" + file + ".tmp' failed"));
   }
   if (std::filesystem::exists(file))
@@ -1205,7 +1311,9 @@ void Simulation<dim>::resume_from(const std::string &directory)
   get_records(in, particle_series);
   get_records(in, grid_series);
   store.for_each_field([&](auto &field) { get_vector(in, field); });
+  cracks.read(in);
   AssertThrow(in, ExcBadInput("--resume", "'" + file + "' is truncated"));
+  cracks.assign_fields(background, crack_reach);
   AssertThrow(step_count <= n_steps,
               ExcBadInput("--resume", "the checkpoint is past this run's end time"));
   output_directory = directory;
@@ -1612,6 +1720,24 @@ std::map<std::string, double> Simulation<dim>::run()
           crack << ',' << store.reference_position[p][d];
         crack << ',' << store.damage[p] << '\n';
       }
+  }
+  if (!cracks.empty())
+  {
+    // The explicit cracks as grown: one row per polyline point.
+    std::ofstream lines(output_directory + "/cracks.csv");
+    lines << "crack,point";
+    for (unsigned int d = 0; d < dim; ++d)
+      lines << ",x" << d;
+    lines << '\n' << std::setprecision(17);
+    for (unsigned int l = 0; l < cracks.polylines().size(); ++l)
+      for (unsigned int i = 0; i < cracks.polylines()[l].size(); ++i)
+      {
+        lines << l << ',' << i;
+        for (unsigned int d = 0; d < dim; ++d)
+          lines << ',' << cracks.polylines()[l][i][d];
+        lines << '\n';
+      }
+    results["crack_second_fields"] = cracks.n_extra_nodes();
   }
 
   std::ofstream json(output_directory + "/summary.json");

@@ -8,6 +8,8 @@
 #include <lme_mpm/grid/background_grid.h>
 #include <lme_mpm/particles/particle_store.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -66,6 +68,31 @@ public:
 
   /// Upper bound of nodes coupled to one particle on this grid.
   virtual unsigned int max_nodes_per_particle() const = 0;
+
+  /**
+   * Upper bound of the distance between a particle and a node of its support (m);
+   * explicit cracks give a second field to the nodes this close to them. The default
+   * bounds it by a box of max_nodes_per_particle() nodes of the widest cells.
+   */
+  virtual double support_radius(const BackgroundGrid<dim> &grid) const
+  {
+    const double width = std::ceil(std::pow(max_nodes_per_particle(), 1.0 / dim) - 1e-9);
+    return width * largest_cell_diagonal(grid);
+  }
+
+  /// Diagonal of a cell with the largest spacing of each direction.
+  static double largest_cell_diagonal(const BackgroundGrid<dim> &grid)
+  {
+    double d2 = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+    {
+      double h = 0;
+      for (unsigned int i = 0; i + 1 < grid.coordinates(d).size(); ++i)
+        h = std::max(h, grid.spacing(d, i));
+      d2 += h * h;
+    }
+    return std::sqrt(d2);
+  }
 
   /**
    * Fills rows [begin, end) of @p conn for the particles' current positions. Called

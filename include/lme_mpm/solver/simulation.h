@@ -7,6 +7,7 @@
 #include <deal.II/base/timer.h>
 
 #include <lme_mpm/boundary/node_constraints.h>
+#include <lme_mpm/fracture/crack_set.h>
 #include <lme_mpm/fracture/fracture_model.h>
 #include <lme_mpm/fracture/neighbourhood.h>
 #include <lme_mpm/grid/background_grid.h>
@@ -144,6 +145,17 @@ private:
   Neighbourhood<dim> neighbours;
   FractureFields fracture_fields;
   bool fracture_active = false;
+  CrackSet<dim> cracks;
+  // Farthest a support reaches (for the cracks' second fields) and the smallest
+  // particle spacing of the bodies (for their growth).
+  double crack_reach = 0, particle_spacing = std::numeric_limits<double>::max();
+  // Per extra node: the crack faces there have closed (this step).
+  std::vector<std::uint8_t> faces_closed;
+  std::vector<Tensor<1, dim>> nodal_displacement;
+  // Per particle: a node of its support has a second field (this step).
+  std::vector<std::uint8_t> touches_crack;
+  void crack_face_contact(std::vector<Tensor<1, dim>> &x,
+                          const std::vector<Tensor<1, dim>> *rate);
   std::vector<std::unique_ptr<NodeConstraint<dim>>> constraints;
   std::vector<Probe<dim>> probes;
   unsigned int peak_constraint = numbers::invalid_unsigned_int, peak_component = 0;

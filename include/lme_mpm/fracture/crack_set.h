@@ -1,0 +1,106 @@
+#ifndef LME_MPM_FRACTURE_CRACK_SET_H
+#define LME_MPM_FRACTURE_CRACK_SET_H
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <lme_mpm/grid/background_grid.h>
+#include <lme_mpm/particles/particle_store.h>
+#include <lme_mpm/shape_functions/shape_function.h>
+
+#include <array>
+#include <cstdint>
+#include <iosfwd>
+#include <limits>
+#include <vector>
+
+namespace lme_mpm
+{
+using namespace dealii;
+
+/**
+ * Explicit cracks (polylines, 2D) that split the grid's velocity field: a grid node
+ * near a crack carries a second field, and a particle whose straight line to the node
+ * crosses a crack talks to that second field instead of the first (Nairn's CRAMP).
+ * The two faces of a crack then move independently even where one node's support
+ * spans both, which a single-valued field cannot do: a notch narrower than the
+ * support is otherwise bridged by the nodes the faces share.
+ *
+ * The second fields are extra node indices past the grid's own, so every nodal loop
+ * handles them unchanged; remapping happens in the connectivity right after the
+ * shape functions are computed. A crack may grow with eroded particles: its tips
+ * follow the failed particles just ahead of them. Faces that close on each other are
+ * kept from interpenetrating by a frictionless contact on the pair of fields.
+ *
+ * Cracks are fixed in space: the solver is small-strain, and a crack that moved with
+ * the nodal velocity would follow the eroded particles (no stress, but still mass)
+ * that drift in the opened gap. A body that moves further than a fraction of a cell
+ * needs cracks that follow the material (roadmap, with the multi-body contact).
+ */
+template <int dim>
+class CrackSet
+{
+public:
+  static void declare_parameters(ParameterHandler &prm);
+  /// Reads the "Cracks" subsection; explicit cracks exist in 2D only.
+  void parse_parameters(ParameterHandler &prm);
+
+  bool empty() const { return lines.empty(); }
+  const std::vector<std::vector<Point<dim>>> &polylines() const { return lines; }
+  bool face_contact() const { return contact; }
+
+  /**
+   * Gives a second field to every node within @p reach of a crack (the farthest a
+   * support reaches), keeping the indices of those it already had. Extra node J
+   * has index grid.n_nodes() + J.
+   */
+  void assign_fields(const BackgroundGrid<dim> &grid, double reach);
+  unsigned int n_extra_nodes() const { return extra_primary.size(); }
+  /// The second field of node @p I, or invalid_unsigned_int.
+  unsigned int second_field(const unsigned int I) const
+  {
+    return I < second.size() ? second[I] : numbers::invalid_unsigned_int;
+  }
+  /// For extra node J (0-based): its grid node and the unit normal pointing from the
+  /// node's own side of the crack to the other.
+  unsigned int primary_of(const unsigned int J) const { return extra_primary[J]; }
+  const Tensor<1, dim> &normal_of(const unsigned int J) const { return extra_normal[J]; }
+
+  /// Sends the particle-node pairs of [begin, end) that cross a crack to the second
+  /// fields, and sets touched[p] to 1 for a particle with a node that has one (0
+  /// otherwise). Pure function of positions and connectivity: thread-safe per range.
+  void separate(const ParticleStore<dim> &particles, const BackgroundGrid<dim> &grid,
+                Connectivity<dim> &conn, std::size_t begin, std::size_t end,
+                std::uint8_t *touched) const;
+
+  /**
+   * Extends the growing tips along the failed particles ahead of them: within 2.5
+   * particle spacings and 45 degrees of the tip's direction (taken over the last five
+   * spacings of the crack), the most straight ahead first. Returns true if a crack
+   * grew.
+   */
+  bool grow(const ParticleStore<dim> &particles, double particle_spacing);
+
+  void write(std::ostream &out) const;
+  void read(std::istream &in);
+
+private:
+  bool crosses(const Point<dim> &p, const Point<dim> &q, unsigned int node) const;
+  void update_normals();
+
+  std::vector<std::vector<Point<dim>>> lines;
+  bool growing = true, contact = true;
+  // Per grid node: its second field (or invalid); per extra node: grid node, normal,
+  // and the crack segments (line, first point) within reach, in compressed rows.
+  std::vector<unsigned int> second;
+  std::vector<unsigned int> extra_primary;
+  std::vector<Point<dim>> extra_point;
+  std::vector<Tensor<1, dim>> extra_normal;
+  std::vector<unsigned int> segment_offsets{0};
+  std::vector<std::pair<unsigned int, unsigned int>> segments;
+  double assigned_reach = 0;
+};
+} // namespace lme_mpm
+
+#endif
