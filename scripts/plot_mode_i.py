@@ -38,6 +38,12 @@ def oscillation(d, P, fraction=0.9):
     return float(np.sqrt(np.mean((y - (a * x + b)) ** 2)) / P[ipk])
 
 
+def stiffness(d, P, at):
+    """P / (2 delta) where the opening first reaches `at` (on the linear branch)."""
+    i = int(np.searchsorted(d, at))
+    return float(P[i] / (2 * d[i])) if i < len(d) and d[i] > 0 else float("nan")
+
+
 def ligament_cut(run, a, width, y_crack, band, bins):
     """Fraction of the ligament (x from a to width) in which some particle within
     `band` of the crack line has failed; 1 means the crack ran through."""
@@ -91,6 +97,7 @@ def main():
                          peak_force=peak, peak_error=peak / P_c - 1,
                          displacement_at_peak=d_peak, displacement_error=d_peak / args.delta_c - 1,
                          oscillation=oscillation(d, P), ligament_cut=cut, crack_band_halfwidth=spread,
+                         stiffness=stiffness(d, P, 0.6 * args.delta_c),
                          status=summary.get("status", "?")))
         ax.plot(d, P, label=f"{label} (peak {peak:.4f})", lw=1.2)
         dmax = max(dmax, float(np.max(d)))
