@@ -184,8 +184,11 @@ TEST(ModeIPanel, CrackThroughThePanelOpensFreelyAndClosesInContact)
   // A crack across the whole panel without a notch: pulled apart, the halves carry no
   // load; pushed together, face contact carries the load of the intact panel, and
   // without contact the halves pass through each other.
-  const std::vector<std::string> through = {"Body 1/Holes=",
-                                            "Cracks/Polylines=-0.2, 0.5, 1.2, 0.5"};
+  // Linear shape functions: the contact does not depend on them, and they keep the
+  // four runs short under the sanitizers.
+  const std::vector<std::string> through = {
+      "Body 1/Holes=", "Cracks/Polylines=-0.2, 0.5, 1.2, 0.5",
+      "Shape functions/Type=linear"};
   const auto with = [&](std::vector<std::string> a, const std::vector<std::string> &b)
   {
     a.insert(a.end(), b.begin(), b.end());
@@ -195,7 +198,8 @@ TEST(ModeIPanel, CrackThroughThePanelOpensFreelyAndClosesInContact)
       "Boundary conditions/Constraint 1/Velocity/Function constants=v0=-4e-4, tr=2.5",
       "Boundary conditions/Constraint 2/Velocity/Function constants=v0=-4e-4, tr=2.5"};
   const auto intact =
-      coarse_panel("panel_intact", 12, {"Body 1/Holes=", "Cracks/Polylines="});
+      coarse_panel("panel_intact", 12,
+                   {"Body 1/Holes=", "Cracks/Polylines=", "Shape functions/Type=linear"});
   const auto pulled = coarse_panel("panel_pulled", 12, through);
   const auto pushed = coarse_panel("panel_pushed", 12, with(through, push));
   const auto passed = coarse_panel(
@@ -210,15 +214,19 @@ TEST(Checkpoint, GrowingCrackResumesBitwiseIdentical)
 {
   // The coarse panel through crack initiation and growth; the last checkpoint falls
   // after the crack has started to grow, so the resumed run must rebuild the grown
-  // crack and its second fields exactly.
-  const std::vector<std::string> o = {
-      "Grid/Cell size=0.05", "Body 1/Holes=slot(0, 0.5, 0.25, 0.025, 0)",
-      "Time/End time=22",    "Output/Write particle files=false",
-      "Output/Verbosity=0",  "Checkpoint/Every steps=600"};
-  const std::string prm = lme_mpm_test::scene("mode_i_panel.prm");
-  const std::string a   = lme_mpm_test::scratch("crack_ckpt_a"),
-                    b   = lme_mpm_test::scratch("crack_ckpt_b");
-  const auto with_dir   = [&](const std::string &dir)
+  // crack and its second fields exactly. Linear shape functions keep it short under
+  // the sanitizers.
+  const std::vector<std::string> o = {"Shape functions/Type=linear",
+                                      "Grid/Cell size=0.05",
+                                      "Body 1/Holes=slot(0, 0.5, 0.25, 0.025, 0)",
+                                      "Time/End time=22",
+                                      "Output/Write particle files=false",
+                                      "Output/Verbosity=0",
+                                      "Checkpoint/Every steps=600"};
+  const std::string prm            = lme_mpm_test::scene("mode_i_panel.prm");
+  const std::string a              = lme_mpm_test::scratch("crack_ckpt_a"),
+                    b              = lme_mpm_test::scratch("crack_ckpt_b");
+  const auto with_dir              = [&](const std::string &dir)
   {
     auto v = o;
     v.push_back("Output/Directory=" + dir);
