@@ -189,15 +189,7 @@ namespace
 {
 using lme_mpm_test::checksum;
 using lme_mpm_test::file_text;
-/// extra, then the scene's settings, then the output directory.
-std::vector<std::string> with_settings(const std::vector<std::string> &scene,
-                                       std::vector<std::string> extra,
-                                       const std::string &dir)
-{
-  extra.insert(extra.end(), scene.begin(), scene.end());
-  extra.push_back("Output/Directory=" + dir);
-  return extra;
-}
+using lme_mpm_test::with_settings;
 
 } // namespace
 

@@ -226,19 +226,14 @@ TEST(Checkpoint, GrowingCrackResumesBitwiseIdentical)
   const std::string prm            = lme_mpm_test::scene("mode_i_panel.prm");
   const std::string a              = lme_mpm_test::scratch("crack_ckpt_a"),
                     b              = lme_mpm_test::scratch("crack_ckpt_b");
-  const auto with_dir              = [&](const std::string &dir)
-  {
-    auto v = o;
-    v.push_back("Output/Directory=" + dir);
-    return v;
-  };
   std::ostringstream quiet;
-  const auto full = lme_mpm::run_parameter_file(prm, with_dir(a), quiet);
-  lme_mpm::run_parameter_file(prm, with_dir(b), quiet);
+  const auto full =
+      lme_mpm::run_parameter_file(prm, lme_mpm_test::with_settings(o, {}, a), quiet);
+  lme_mpm::run_parameter_file(prm, lme_mpm_test::with_settings(o, {}, b), quiet);
   const std::string grown = lme_mpm_test::file_text(a + "/cracks.csv");
   EXPECT_GT(std::count(grown.begin(), grown.end(), '\n'), 4) << grown; // it grew
   EXPECT_GT(full.at("steps"), 1800);
-  lme_mpm::run_parameter_file(prm, with_dir(b), quiet, b);
+  lme_mpm::run_parameter_file(prm, lme_mpm_test::with_settings(o, {}, b), quiet, b);
   EXPECT_FALSE(lme_mpm_test::checksum(a).empty());
   EXPECT_EQ(lme_mpm_test::checksum(a), lme_mpm_test::checksum(b));
   EXPECT_EQ(grown, lme_mpm_test::file_text(b + "/cracks.csv"));

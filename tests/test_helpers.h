@@ -45,6 +45,16 @@ inline std::string file_text(const std::string &path)
   return s.str();
 }
 
+/// extra, then the scene's settings, then the output directory.
+inline std::vector<std::string> with_settings(const std::vector<std::string> &scene,
+                                              std::vector<std::string> extra,
+                                              const std::string &dir)
+{
+  extra.insert(extra.end(), scene.begin(), scene.end());
+  extra.push_back("Output/Directory=" + dir);
+  return extra;
+}
+
 /// The state checksum a run wrote to summary.json ("" if none).
 inline std::string checksum(const std::string &dir)
 {

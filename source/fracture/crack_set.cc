@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <istream>
-#include <ostream>
 
 namespace lme_mpm
 {
@@ -92,7 +90,6 @@ void CrackSet<dim>::assign_fields(const BackgroundGrid<dim> &grid, const double 
   if (lines.empty())
     return;
   const unsigned int n_nodes = grid.n_nodes();
-  assigned_reach             = reach;
   second.resize(n_nodes, numbers::invalid_unsigned_int);
   // Candidate segments per grid node, then the rows in extra-node order.
   std::vector<std::vector<std::pair<unsigned int, unsigned int>>> near(
@@ -272,42 +269,16 @@ bool CrackSet<dim>::grow(const ParticleStore<dim> &particles,
 }
 
 template <int dim>
-void CrackSet<dim>::write(std::ostream &out) const
+void CrackSet<dim>::restore(std::vector<std::vector<Point<dim>>> saved)
 {
-  const auto put = [&](const auto &v)
-  { out.write(reinterpret_cast<const char *>(&v), sizeof(v)); };
-  put(std::uint64_t(lines.size()));
-  for (const auto &line : lines)
-  {
-    put(std::uint64_t(line.size()));
-    for (const auto &x : line)
-      put(x);
-  }
-}
-
-template <int dim>
-void CrackSet<dim>::read(std::istream &in)
-{
-  const auto get  = [&](auto &v) { in.read(reinterpret_cast<char *>(&v), sizeof(v)); };
-  std::uint64_t n = 0;
-  get(n);
-  AssertThrow(in && n == lines.size(),
-              ExcBadInput("--resume", "the checkpoint holds " + std::to_string(n) +
-                                          " cracks, the parameter file " +
-                                          std::to_string(lines.size())));
-  for (auto &line : lines)
-  {
-    std::uint64_t m = 0;
-    get(m);
-    AssertThrow(in && m >= 2 && m < (1u << 30),
+  Assert(saved.size() == lines.size(), ExcDimensionMismatch(saved.size(), lines.size()));
+  for (const auto &line : saved)
+    AssertThrow(line.size() >= 2,
                 ExcBadInput("--resume", "the checkpoint's crack data are corrupt"));
-    line.resize(m);
-    for (auto &x : line)
-      get(x);
-  }
-  // Rebuilt from scratch, in the order a run that never stopped would have built it
-  // only if the crack grew in the same steps; the fields' numbering does not change
-  // any sum (each extra node is summed in particle order like any other).
+  lines = std::move(saved);
+  // The fields are reassigned from the restored lines; their numbering may differ
+  // from the uninterrupted run's, which changes no sum (each field is summed in
+  // particle order like any node).
   second.clear();
   extra_primary.clear();
   extra_point.clear();

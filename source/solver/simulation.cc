@@ -1049,8 +1049,12 @@ void Simulation<dim>::crack_face_contact(std::vector<Tensor<1, dim>> &x,
   const unsigned int n_grid = background.n_nodes();
   if (!rate)
   {
-    // Mass-weighted particle displacements of each field of the crack nodes.
-    nodal_displacement.assign(nodal_mass.size(), Tensor<1, dim>());
+    // Mass-weighted particle displacements of each field of the crack nodes (the
+    // only entries written and read).
+    nodal_displacement.resize(nodal_mass.size());
+    for (unsigned int J = 0; J < cracks.n_extra_nodes(); ++J)
+      nodal_displacement[cracks.primary_of(J)] = nodal_displacement[n_grid + J] =
+          Tensor<1, dim>();
     scatter(
         [&](const std::size_t p)
         {
@@ -1249,7 +1253,9 @@ void Simulation<dim>::write_checkpoint()
     put_records(out, output->particle_series());
     put_records(out, output->grid_series());
     store.for_each_field([&](auto &field) { put_vector(out, field); });
-    cracks.write(out);
+    put(out, std::uint64_t(cracks.polylines().size()));
+    for (const auto &line : cracks.polylines())
+      put_vector(out, line);
     AssertThrow(out, ExcMessage("Writing the checkpoint '" + file + ".tmp' failed"));
   }
   if (std::filesystem::exists(file))
@@ -1311,8 +1317,17 @@ void Simulation<dim>::resume_from(const std::string &directory)
   get_records(in, particle_series);
   get_records(in, grid_series);
   store.for_each_field([&](auto &field) { get_vector(in, field); });
-  cracks.read(in);
+  std::uint64_t n_cracks = 0;
+  get(in, n_cracks);
+  AssertThrow(in && n_cracks == cracks.polylines().size(),
+              ExcBadInput("--resume", "the checkpoint holds " + std::to_string(n_cracks) +
+                                          " cracks, the parameter file " +
+                                          std::to_string(cracks.polylines().size())));
+  std::vector<std::vector<Point<dim>>> crack_lines(n_cracks);
+  for (auto &line : crack_lines)
+    get_vector(in, line);
   AssertThrow(in, ExcBadInput("--resume", "'" + file + "' is truncated"));
+  cracks.restore(std::move(crack_lines));
   cracks.assign_fields(background, crack_reach);
   AssertThrow(step_count <= n_steps,
               ExcBadInput("--resume", "the checkpoint is past this run's end time"));

@@ -11,7 +11,6 @@
 
 #include <array>
 #include <cstdint>
-#include <iosfwd>
 #include <limits>
 #include <vector>
 
@@ -82,8 +81,9 @@ public:
    */
   bool grow(const ParticleStore<dim> &particles, double particle_spacing);
 
-  void write(std::ostream &out) const;
-  void read(std::istream &in);
+  /// Replaces the lines by those of a checkpoint (the caller checks that the count
+  /// is the parameter file's); call assign_fields() afterwards.
+  void restore(std::vector<std::vector<Point<dim>>> saved);
 
 private:
   bool crosses(const Point<dim> &p, const Point<dim> &q, unsigned int node) const;
@@ -99,7 +99,6 @@ private:
   std::vector<Tensor<1, dim>> extra_normal;
   std::vector<unsigned int> segment_offsets{0};
   std::vector<std::pair<unsigned int, unsigned int>> segments;
-  double assigned_reach = 0;
 };
 } // namespace lme_mpm
 
