@@ -50,16 +50,19 @@ TEST(Cracks, PairsThatCrossTheCrackUseTheSecondField)
   BackgroundGrid<2> grid;
   make_unit_grid(grid, 0.1);
   auto cracks = make_cracks("0.2, 0.5, 0.6, 0.5");
-  cracks.assign_fields(grid, 0.45);
+  FieldLayout layout;
+  layout.reinit(grid.n_nodes());
+  cracks.assign_fields(grid, 0.45, layout);
   const unsigned int on_line = node_at(grid, 0.4, 0.5), above = node_at(grid, 0.4, 0.6),
                      below = node_at(grid, 0.4, 0.4), past_tip = node_at(grid, 0.9, 0.6),
                      far = node_at(grid, 0.4, 0.0);
   for (const unsigned int I : {on_line, above, below, past_tip})
-    ASSERT_NE(cracks.second_field(I), numbers::invalid_unsigned_int);
-  EXPECT_EQ(cracks.second_field(far), numbers::invalid_unsigned_int);
+    ASSERT_NE(cracks.crack_node(I), numbers::invalid_unsigned_int);
+  EXPECT_EQ(cracks.crack_node(far), numbers::invalid_unsigned_int);
+  EXPECT_EQ(layout.n_extra(), cracks.n_crack_nodes());
   // The normal points from the node's side to the other face.
-  EXPECT_LT(cracks.normal_of(cracks.second_field(above))[1], -0.99);
-  EXPECT_GT(cracks.normal_of(cracks.second_field(below))[1], 0.99);
+  EXPECT_LT(cracks.normal_of(cracks.crack_node(above))[1], -0.99);
+  EXPECT_GT(cracks.normal_of(cracks.crack_node(below))[1], 0.99);
 
   ParticleStore<2> store;
   store.position = {Point<2>(0.4, 0.45), Point<2>(0.4, 0.55), Point<2>(0.75, 0.45)};
@@ -95,7 +98,9 @@ TEST(Cracks, PairsThatCrossTheCrackUseTheSecondField)
   EXPECT_EQ(field(2, 0), 2);
   for (unsigned int k = 1; k < 4; ++k)
     EXPECT_EQ(field(2, k), 1) << "node " << k;
-  EXPECT_EQ(conn.nodes[0], grid.n_nodes() + cracks.second_field(on_line));
+  EXPECT_EQ(conn.nodes[0], layout.find(on_line, FieldLayout::crack_side));
+  EXPECT_EQ(conn.nodes[0], cracks.field_of(cracks.crack_node(on_line)));
+  EXPECT_EQ(layout.node_of(conn.nodes[0]), on_line);
 }
 
 TEST(Cracks, TipsFollowTheFailedParticlesAhead)

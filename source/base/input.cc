@@ -123,5 +123,39 @@ void require_range(const double value, const double lo, const double hi, const b
 
 template dealii::Point<2> parse_point<2>(const std::string &, const std::string &);
 template dealii::Point<3> parse_point<3>(const std::string &, const std::string &);
+template <int dim>
+void parse_function(dealii::ParameterHandler &prm, const std::string &section,
+                    dealii::Functions::ParsedFunction<dim> &f, const std::string &entry)
+{
+  prm.enter_subsection(section);
+  try
+  {
+    f.parse_parameters(prm);
+    for (unsigned int c = 0; c < f.n_components; ++c)
+      (void)f.value(dealii::Point<dim>(), c);
+  }
+  catch (...)
+  {
+    prm.leave_subsection();
+    AssertThrow(false, ExcBadInput(entry + "/Function expression",
+                                   "not a valid expression of the coordinates and t "
+                                   "with " +
+                                       std::to_string(f.n_components) +
+                                       " components separated by ';'"));
+  }
+  prm.leave_subsection();
+}
+
+template void parse_function<2>(dealii::ParameterHandler &, const std::string &,
+                                dealii::Functions::ParsedFunction<2> &,
+                                const std::string &);
+template void parse_function<3>(dealii::ParameterHandler &, const std::string &,
+                                dealii::Functions::ParsedFunction<3> &,
+                                const std::string &);
+
+std::string subsection_name(const std::string &kind, const unsigned int i)
+{
+  return kind + " " + std::to_string(i + 1);
+}
 } // namespace input
 } // namespace lme_mpm

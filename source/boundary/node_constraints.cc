@@ -72,22 +72,9 @@ void NodeConstraint<dim>::parse_parameters(ParameterHandler &prm,
   AssertThrow(dim == 3 || comps.find('z') == std::string::npos,
               ExcBadInput(prefix + "/Components", "'z' does not exist in 2D"));
 
-  prm.enter_subsection("Velocity");
   function = std::make_unique<Functions::ParsedFunction<dim>>(dim);
-  try
-  {
-    function->parse_parameters(prm);
-    for (unsigned int c = 0; c < dim; ++c)
-      (void)function->value(Point<dim>(), c);
-  }
-  catch (...)
-  {
-    prm.leave_subsection();
-    AssertThrow(false, ExcBadInput(prefix + "/Velocity/Function expression",
-                                   "not a valid expression of x, y" +
-                                       std::string(dim == 3 ? ", z" : "") + ", t with " +
-                                       std::to_string(dim) + " components"));
-  }
+  input::parse_function(prm, "Velocity", *function, prefix + "/Velocity");
+  prm.enter_subsection("Velocity");
   const std::string expr = prm.get("Function expression");
   prm.leave_subsection();
   for (const auto &n : node_list)
@@ -107,9 +94,8 @@ void NodeConstraint<dim>::parse_parameters(ParameterHandler &prm,
   constant = !depends;
   if (constant)
   {
-    constant_value.resize(1);
     for (unsigned int d = 0; d < dim; ++d)
-      constant_value[0][d] = function->value(points[0], d);
+      constant_value[d] = function->value(points[0], d);
   }
 }
 
@@ -117,7 +103,7 @@ template <int dim>
 Tensor<1, dim> NodeConstraint<dim>::velocity(const unsigned int i, const double t) const
 {
   if (constant)
-    return constant_value[0];
+    return constant_value;
   function->set_time(t);
   Tensor<1, dim> v;
   for (unsigned int d = 0; d < dim; ++d)
@@ -126,6 +112,140 @@ Tensor<1, dim> NodeConstraint<dim>::velocity(const unsigned int i, const double 
   return v;
 }
 
+template <int dim>
+void NodeConstraint<dim>::update_reaction(
+    const FieldLayout &layout, const std::vector<double> &mass,
+    const std::vector<Tensor<1, dim>> &acceleration,
+    const std::vector<Tensor<1, dim>> &force,
+    const std::vector<Tensor<1, dim>> *mass_times_acceleration,
+    const std::vector<Tensor<1, dim>> &rate, const double dt, double &work)
+{
+  const auto reaction_at = [&](const unsigned int K, const unsigned int d)
+  {
+    const double ma = mass_times_acceleration ? (*mass_times_acceleration)[K][d]
+                                              : mass[K] * acceleration[K][d];
+    return ma - force[K][d];
+  };
+  total_reaction = Tensor<1, dim>();
+  Tensor<1, dim> mean_rate;
+  for (unsigned int i = 0; i < node_list.size(); ++i)
+  {
+    const unsigned int I = node_list[i];
+    for (unsigned int d = 0; d < dim; ++d)
+      if (component_mask[d])
+      {
+        // The node's other fields are constrained with it; their reactions add up.
+        double r = reaction_at(I, d);
+        layout.for_each_extra(I, [&](const unsigned int K) { r += reaction_at(K, d); });
+        total_reaction[d] += r;
+        work += 0.5 * (node_reaction[i][d] + r) * dt * rate[I][d];
+        node_reaction[i][d] = r;
+        mean_rate[d] += rate[I][d];
+      }
+  }
+  mean_displacement += (dt / node_list.size()) * mean_rate;
+}
+
+template <int dim>
+void NodeConstraints<dim>::declare_parameters(ParameterHandler &prm,
+                                              const unsigned int n_constraints)
+{
+  prm.enter_subsection("Boundary conditions");
+  for (unsigned int c = 0; c < n_constraints; ++c)
+  {
+    prm.enter_subsection(input::subsection_name("Constraint", c));
+    NodeConstraint<dim>::declare_parameters(prm);
+    prm.leave_subsection();
+  }
+  prm.leave_subsection();
+}
+
+template <int dim>
+void NodeConstraints<dim>::parse_parameters(ParameterHandler &prm,
+                                            const unsigned int n_constraints,
+                                            const BackgroundGrid<dim> &grid)
+{
+  sets.clear();
+  nodes.clear();
+  prm.enter_subsection("Boundary conditions");
+  for (unsigned int c = 0; c < n_constraints; ++c)
+  {
+    const std::string section = input::subsection_name("Constraint", c);
+    prm.enter_subsection(section);
+    sets.push_back(std::make_unique<NodeConstraint<dim>>());
+    sets.back()->parse_parameters(prm, grid, "Boundary conditions/" + section);
+    prm.leave_subsection();
+    for (unsigned int o = 0; o + 1 < sets.size(); ++o)
+      AssertThrow(sets[o]->name() != sets.back()->name(),
+                  ExcBadInput("Boundary conditions/" + section + "/Name",
+                              "'" + sets.back()->name() + "' is used twice"));
+    nodes.insert(nodes.end(), sets.back()->nodes().begin(), sets.back()->nodes().end());
+  }
+  prm.leave_subsection();
+}
+
+template <int dim>
+void NodeConstraints<dim>::impose_rates(std::vector<Tensor<1, dim>> &x,
+                                        const FieldLayout &layout, const double t) const
+{
+  for (const auto &c : sets)
+    c->impose(
+        x, layout, [&](const unsigned int i) { return c->velocity(i, t); }, 1.0);
+}
+
+template <int dim>
+void NodeConstraints<dim>::impose_accelerations(std::vector<Tensor<1, dim>> &x,
+                                                const FieldLayout &layout, const double t,
+                                                const double dt) const
+{
+  // The velocity change over the step (not the derivative at one time), so that
+  // the corrected nodal velocity lands on the prescribed one.
+  for (const auto &c : sets)
+    c->impose(
+        x, layout,
+        [&](const unsigned int i) { return c->velocity(i, t + dt) - c->velocity(i, t); },
+        dt);
+}
+
+template <int dim>
+double NodeConstraints<dim>::update_reactions(
+    const FieldLayout &layout, const std::vector<double> &mass,
+    const std::vector<Tensor<1, dim>> &acceleration,
+    const std::vector<Tensor<1, dim>> &force,
+    const std::vector<Tensor<1, dim>> *mass_times_acceleration,
+    const std::vector<Tensor<1, dim>> &rate, const double dt)
+{
+  double work = 0;
+  for (auto &c : sets)
+    c->update_reaction(layout, mass, acceleration, force, mass_times_acceleration, rate,
+                       dt, work);
+  return work;
+}
+
+template <int dim>
+void NodeConstraints<dim>::write_header(std::ostream &out) const
+{
+  for (const auto &c : sets)
+    for (const char *q : {"force", "displacement"})
+      for (unsigned int d = 0; d < dim; ++d)
+        out << "," << q << "_" << c->name() << "_"
+            << "xyz"[d];
+}
+
+template <int dim>
+void NodeConstraints<dim>::write_row(std::ostream &out) const
+{
+  for (const auto &c : sets)
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      out << "," << c->reaction()[d];
+    for (unsigned int d = 0; d < dim; ++d)
+      out << "," << c->displacement()[d];
+  }
+}
+
 template class NodeConstraint<2>;
 template class NodeConstraint<3>;
+template class NodeConstraints<2>;
+template class NodeConstraints<3>;
 } // namespace lme_mpm

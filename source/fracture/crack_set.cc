@@ -85,7 +85,8 @@ void CrackSet<dim>::parse_parameters(ParameterHandler &prm)
 }
 
 template <int dim>
-void CrackSet<dim>::assign_fields(const BackgroundGrid<dim> &grid, const double reach)
+void CrackSet<dim>::assign_fields(const BackgroundGrid<dim> &grid, const double reach,
+                                  FieldLayout &layout)
 {
   if (lines.empty())
     return;
@@ -119,6 +120,7 @@ void CrackSet<dim>::assign_fields(const BackgroundGrid<dim> &grid, const double 
             {
               second[I] = extra_primary.size();
               extra_primary.push_back(I);
+              extra_field.push_back(layout.add(I, FieldLayout::crack_side));
               extra_point.push_back(x);
               near.emplace_back();
             }
@@ -191,7 +193,6 @@ void CrackSet<dim>::separate(const ParticleStore<dim> &particles,
 {
   if (lines.empty())
     return;
-  const unsigned int n_grid = grid.n_nodes();
   for (std::size_t p = begin; p < end; ++p)
   {
     unsigned int *nodes = &conn.nodes[p * conn.stride];
@@ -203,7 +204,7 @@ void CrackSet<dim>::separate(const ParticleStore<dim> &particles,
         continue;
       near = true;
       if (crosses(particles.position[p], grid.node_point(nodes[k]), J))
-        nodes[k] = n_grid + J;
+        nodes[k] = extra_field[J];
     }
     touched[p] = near;
   }
@@ -281,6 +282,7 @@ void CrackSet<dim>::restore(std::vector<std::vector<Point<dim>>> saved)
   // particle order like any node).
   second.clear();
   extra_primary.clear();
+  extra_field.clear();
   extra_point.clear();
   extra_normal.clear();
 }

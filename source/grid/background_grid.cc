@@ -121,6 +121,10 @@ void BackgroundGrid<dim>::reinit(const Point<dim> &lower,
     n_nodes_total *= coords[d].size();
     n_cells_total *= steps[d].size();
   }
+  h_max = 0;
+  for (unsigned int d = 0; d < dim; ++d)
+    for (std::size_t i = 0; i + 1 < coords[d].size(); ++i)
+      h_max = std::max(h_max, spacing(d, i));
 
   std::vector<std::vector<double>> step_list(steps.begin(), steps.end());
   tria.clear();

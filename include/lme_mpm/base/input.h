@@ -2,6 +2,8 @@
 #define LME_MPM_BASE_INPUT_H
 
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/parsed_function.h>
 #include <deal.II/base/point.h>
 
 #include <exception>
@@ -42,6 +44,18 @@ std::string concise_message(const std::exception &e);
 /// Throws ExcBadInput unless lo < value < hi (open) or lo <= value <= hi.
 void require_range(double value, double lo, double hi, bool open,
                    const std::string &entry);
+
+/**
+ * Parses the ParsedFunction declared in subsection @p section of the current one.
+ * muparser compiles on first use, so the function is evaluated once here: a syntax
+ * error or a wrong number of components throws ExcBadInput naming @p entry.
+ */
+template <int dim>
+void parse_function(dealii::ParameterHandler &prm, const std::string &section,
+                    dealii::Functions::ParsedFunction<dim> &f, const std::string &entry);
+
+/// "Kind N" with N counted from 1, the name of a repeated subsection.
+std::string subsection_name(const std::string &kind, unsigned int i);
 } // namespace input
 } // namespace lme_mpm
 

@@ -6,6 +6,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <lme_mpm/grid/background_grid.h>
+#include <lme_mpm/grid/field_layout.h>
 #include <lme_mpm/particles/particle_store.h>
 #include <lme_mpm/shape_functions/shape_function.h>
 
@@ -50,22 +51,23 @@ public:
   bool face_contact() const { return contact; }
 
   /**
-   * Gives a second field to every node within @p reach of a crack (the farthest a
-   * support reaches), keeping the indices of those it already had. Extra node J
-   * has index grid.n_nodes() + J.
+   * Gives a second field, tagged FieldLayout::crack_side in @p layout, to every node
+   * within @p reach of a crack (the farthest a support reaches), keeping those it
+   * already had.
    */
-  void assign_fields(const BackgroundGrid<dim> &grid, double reach);
-  unsigned int n_extra_nodes() const { return extra_primary.size(); }
-  /// The second field of node @p I, or invalid_unsigned_int.
-  unsigned int second_field(const unsigned int I) const
+  void assign_fields(const BackgroundGrid<dim> &grid, double reach, FieldLayout &layout);
+  /// The crack node index J of grid node @p I, or invalid_unsigned_int.
+  unsigned int crack_node(const unsigned int I) const
   {
     return I < second.size() ? second[I] : numbers::invalid_unsigned_int;
   }
-  /// For extra node J (0-based): its grid node and the unit normal pointing from the
-  /// node's own side of the crack to the other.
+  /// How many nodes carry a crack's second field.
+  unsigned int n_crack_nodes() const { return extra_primary.size(); }
+  /// For crack node J (0-based): its grid node, its second field, and the unit
+  /// normal pointing from the node's own side of the crack to the other.
   unsigned int primary_of(const unsigned int J) const { return extra_primary[J]; }
+  unsigned int field_of(const unsigned int J) const { return extra_field[J]; }
   const Tensor<1, dim> &normal_of(const unsigned int J) const { return extra_normal[J]; }
-
   /// Sends the particle-node pairs of [begin, end) that cross a crack to the second
   /// fields, and sets touched[p] to 1 for a particle with a node that has one (0
   /// otherwise). Pure function of positions and connectivity: thread-safe per range.
@@ -82,7 +84,7 @@ public:
   bool grow(const ParticleStore<dim> &particles, double particle_spacing);
 
   /// Replaces the lines by those of a checkpoint (the caller checks that the count
-  /// is the parameter file's); call assign_fields() afterwards.
+  /// is the parameter file's); call assign_fields() on a fresh layout afterwards.
   void restore(std::vector<std::vector<Point<dim>>> saved);
 
 private:
@@ -91,10 +93,11 @@ private:
 
   std::vector<std::vector<Point<dim>>> lines;
   bool growing = true, contact = true;
-  // Per grid node: its second field (or invalid); per extra node: grid node, normal,
-  // and the crack segments (line, first point) within reach, in compressed rows.
+  // Per grid node: its crack node index J (or invalid); per crack node: grid node,
+  // second field, normal, and the crack segments (line, first point) within reach,
+  // in compressed rows.
   std::vector<unsigned int> second;
-  std::vector<unsigned int> extra_primary;
+  std::vector<unsigned int> extra_primary, extra_field;
   std::vector<Point<dim>> extra_point;
   std::vector<Tensor<1, dim>> extra_normal;
   std::vector<unsigned int> segment_offsets{0};

@@ -51,6 +51,8 @@ public:
     return coords[d][cell_i + 1] - coords[d][cell_i];
   }
   double min_spacing() const { return h_min; }
+  /// The largest cell size in any direction.
+  double max_spacing() const { return h_max; }
   bool is_uniform(const unsigned int d) const { return uniform_h[d] > 0; }
 
   Point<dim> lower_corner() const;
@@ -140,7 +142,7 @@ private:
   std::array<unsigned int, dim> node_strides{};
   std::array<unsigned int, dim> cell_strides{};
   unsigned int n_nodes_total = 0, n_cells_total = 0;
-  double h_min = 0;
+  double h_min = 0, h_max = 0;
 
   Triangulation<dim> tria;
   std::unique_ptr<FESystem<dim>> fe;

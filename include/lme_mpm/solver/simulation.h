@@ -3,60 +3,47 @@
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/parameter_handler.h>
-#include <deal.II/base/parsed_function.h>
 #include <deal.II/base/timer.h>
 
+#include <lme_mpm/base/archive.h>
 #include <lme_mpm/boundary/node_constraints.h>
 #include <lme_mpm/fracture/crack_set.h>
-#include <lme_mpm/fracture/fracture_model.h>
-#include <lme_mpm/fracture/neighbourhood.h>
+#include <lme_mpm/fracture/fracture_coupling.h>
 #include <lme_mpm/grid/background_grid.h>
-#include <lme_mpm/materials/material.h>
+#include <lme_mpm/materials/material_set.h>
+#include <lme_mpm/output/energy_balance.h>
+#include <lme_mpm/output/exact_solution.h>
+#include <lme_mpm/output/history_file.h>
 #include <lme_mpm/output/particle_output.h>
+#include <lme_mpm/output/peak_force.h>
+#include <lme_mpm/output/probes.h>
+#include <lme_mpm/output/run_summary.h>
 #include <lme_mpm/particles/particle_store.h>
 #include <lme_mpm/shape_functions/shape_function.h>
+#include <lme_mpm/solver/crack_face_contact.h>
 #include <lme_mpm/solver/explicit_newmark.h>
+#include <lme_mpm/solver/grid_transfer.h>
+#include <lme_mpm/solver/run.h>
+#include <lme_mpm/solver/run_parameters.h>
 
-#include <fstream>
+#include <chrono>
+#include <cstdint>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
-#include <utility>
-#include <vector>
 
 namespace lme_mpm
 {
-/// How many of each repeated subsection a parameter file declares (read first).
-struct ParameterCounts
-{
-  unsigned int dim         = 2;
-  unsigned int materials   = 1;
-  unsigned int bodies      = 1;
-  unsigned int constraints = 0;
-  unsigned int probes      = 0;
-
-  static void declare_parameters(ParameterHandler &prm);
-  void parse_parameters(ParameterHandler &prm);
-};
-
 /// A run that became unphysical or unstable; the message says where and why.
 DeclException5(ExcRunAborted, unsigned int, double, unsigned int, std::string,
                std::string, << "Run stopped at step " << arg1 << ", time " << arg2
                             << ": particle " << arg3 << " at " << arg4 << ": " << arg5);
 
-/// A point where history.csv reports the stress averaged over nearby particles.
-template <int dim>
-struct Probe
-{
-  std::string name;
-  Point<dim> point;
-  double radius;
-};
-
 /**
- * One MPM run: reads a parameter file's entries, builds grid, particles, shape
- * functions, materials and constraints, and advances them with the explicit Newmark
- * predictor-corrector (doc/theory.md), writing VTU/PVD, history.csv and
+ * One MPM run: owns the grid, the particles and the parts that act on them, and
+ * advances them with the explicit Newmark predictor-corrector (doc/theory.md), one
+ * named stage after another (doc/design.md), writing VTU/PVD, history.csv and
  * summary.json to the output directory.
  */
 template <int dim>
@@ -88,140 +75,71 @@ public:
   /// A hash of every particle field and the time: equal states, equal sums (FNV-1a).
   std::uint64_t state_checksum();
 
-  /// Kinetic, strain, external work and total energy (J) now.
+  /// Kinetic, strain, dissipated energy, external work and total energy (J) now.
   std::map<std::string, double> energies() const;
 
 private:
-  void setup_particles(ParameterHandler &prm, const ParameterCounts &counts);
-  void setup_time_step(ParameterHandler &prm);
+  // The stages of a step, in order.
   void locate_and_sort();
-  std::pair<unsigned int, unsigned int> support_reach(std::size_t begin,
-                                                      std::size_t end) const;
-  /// Calls f(p) for every particle, in an order that adds to each node in a way
-  /// independent of the thread count (two colours of slabs of cell layers).
-  template <class F>
-  void scatter(const F &f);
-  /// The same order, handing f(begin, end) chunks of at most scatter_chunk particles.
-  template <class F>
-  void scatter_chunks(const F &f);
-  /// Small enough for a chunk's connectivity to stay in the L2 cache.
-  static constexpr std::size_t scatter_chunk = 256;
-  void write_output_row(bool final_row);
-  void abort_run(std::size_t p, const std::string &why) const;
-  void update_fracture();
-  void write_checkpoint();
-  /// Mx = M_C x with the consistent mass matrix (two transfers, no matrix stored).
-  void apply_consistent_mass(const std::vector<Tensor<1, dim>> &x,
-                             std::vector<Tensor<1, dim>> &Mx);
-  template <class Constrain>
-  void correct_towards_consistent_mass(std::vector<Tensor<1, dim>> &x,
-                                       const std::vector<Tensor<1, dim>> &rhs,
-                                       const Constrain &constrain);
+  void particles_to_grid();
+  void predict_displacement_rates(double t_half);
+  void update_stresses_and_forces();
+  /// Accelerations with contact and constraints; returns M a where the mass matrix
+  /// is not lumped (null otherwise), for the reactions.
+  const std::vector<Tensor<1, dim>> *correct_accelerations();
+  /// Reactions, then the Newmark corrector on the particles; returns the first
+  /// particle that went wrong (or the number of particles).
+  std::size_t
+  update_particles(const std::vector<Tensor<1, dim>> *mass_times_acceleration);
+  void abort_unstable(std::size_t p) const;
 
-  // Configuration.
-  unsigned int verbosity;
+  // Set-up.
+  void setup_particles(ParameterHandler &prm, const ParameterCounts &counts);
+
+  // The run loop and its output.
+  void prepare_output();
+  void advance_to_end(TimerOutput &timer, std::chrono::steady_clock::time_point start);
+  void write_output_row();
+  void write_checkpoint();
+  void serialize(Archive &ar);
+  void report_progress(std::chrono::steady_clock::time_point start);
+  RunSummary summarise(double wall);
+  void abort_run(std::size_t p, const std::string &why) const;
+
+  std::ostream &console_stream;
+  ConditionalOStream pcout;
+  RunParameters<dim> parameters;
   std::string output_directory;
-  double end_time, output_interval, thickness;
-  ExplicitNewmark newmark;
-  Tensor<1, dim> body_force;
-  double dt = 0, t = 0;
-  unsigned int n_steps = 0, step_count = 0;
-  double mass_tolerance = 0;
-  // Checkpoints.
-  unsigned int checkpoint_every_steps = 0;
-  double checkpoint_every_seconds     = 0;
-  bool resumed                        = false;
-  std::uint64_t resumed_history_size  = 0;
-  unsigned int mass_corrections       = 0;
-  bool write_particles;
-  unsigned int n_threads_used = 1;
 
   BackgroundGrid<dim> background;
   ParticleStore<dim> store;
-  std::unique_ptr<ShapeFunction<dim>> shape_function;
-  std::vector<std::unique_ptr<Material<dim>>> materials;
-  /// Per material; null where the material does not fracture.
-  std::vector<std::unique_ptr<FractureModel<dim>>> fracture_models;
-  Neighbourhood<dim> neighbours;
-  FractureFields fracture_fields;
-  bool fracture_active = false;
+  MaterialSet<dim> materials;
+  FractureCoupling<dim> fracture;
   CrackSet<dim> cracks;
+  std::unique_ptr<ShapeFunction<dim>> shape_function;
+  NodeConstraints<dim> constraints;
+  GridTransfer<dim> transfer;
+  CrackFaceContact<dim> crack_contact;
+
+  ExplicitNewmark newmark;
+  double dt = 0, t = 0;
+  unsigned int n_steps = 0, step_count = 0;
+  double mass_tolerance = 0;
   // Farthest a support reaches (for the cracks' second fields) and the smallest
   // particle spacing of the bodies (for their growth).
   double crack_reach = 0, particle_spacing = std::numeric_limits<double>::max();
-  // Per extra node: the crack faces there have closed (this step).
-  std::vector<std::uint8_t> faces_closed;
-  std::vector<Tensor<1, dim>> nodal_displacement;
-  // Per particle: a node of its support has a second field (this step).
-  std::vector<std::uint8_t> touches_crack;
-  void crack_face_contact(std::vector<Tensor<1, dim>> &x,
-                          const std::vector<Tensor<1, dim>> *rate);
-  std::vector<std::unique_ptr<NodeConstraint<dim>>> constraints;
-  std::vector<Probe<dim>> probes;
-  unsigned int peak_constraint = numbers::invalid_unsigned_int, peak_component = 0;
-  double peak_force = -std::numeric_limits<double>::max(), displacement_at_peak = 0;
-  Connectivity<dim> conn;
-  // How many cell layers the shape-function supports have reached below and above
-  // their particles' layers so far (the slab width of the coloured scatter).
-  unsigned int slab_below = 0, slab_above = 0;
 
-  // Nodal fields (lexicographic node index).
-  std::vector<double> nodal_mass;
-  std::vector<Tensor<1, dim>> nodal_momentum, nodal_mass_acceleration, nodal_rate,
-      nodal_force, nodal_acceleration;
-  // Per-particle displacement increment of the current step.
-  std::vector<Tensor<1, dim>> particle_increment;
-  // Scratch for the consistent-mass corrections.
-  std::vector<Tensor<1, dim>> nodal_rhs, nodal_scratch, particle_scratch;
-  // Nodes that carry mass this step, ascending. Nodal loops run over them only and the
-  // nodal arrays are zero elsewhere, so empty grid regions cost nothing per step.
-  std::vector<unsigned int> active_nodes;
-  /// Zeroes the nodal arrays where the last step wrote them (sizes them on first use).
-  void clear_nodal_arrays();
-  /// Collects the nodes with positive mass after the particle-to-grid transfer.
-  void collect_active_nodes();
-  /// Runs f(I) for every active node, in parallel.
-  template <class F>
-  void for_active_nodes(const F &f) const;
-
-  // Energy accounting.
-  double external_work = 0, initial_total_energy = 0;
-  double max_energy_drift = 0, energy_scale = 0;
-
-  // Exact solution (verification scenes).
-  bool compare_exact = false;
-  std::unique_ptr<Functions::ParsedFunction<dim>> exact_displacement, exact_velocity,
-      exact_stress;
-  double exact_stress_norm = 0, max_error_stress = 0;
-  SymmetricTensor<2, dim> exact_stress_at(const Point<dim> &X) const;
-  double exact_displacement_norm = 0, exact_velocity_norm = 0;
-  double max_error_displacement = 0, max_error_velocity = 0;
-
-  // Output.
+  EnergyBalance<dim> energy;
+  PeakForce<dim> peak_force;
+  Probes<dim> probes;
+  ExactSolution<dim> exact;
   std::unique_ptr<ParticleOutput<dim>> output;
-  std::ofstream history;
-  double next_output_time = 0;
-  std::ostream &console_stream;
-  ConditionalOStream pcout;
+  HistoryFile history;
+  double next_output_time            = 0;
+  bool resumed                       = false;
+  std::uint64_t resumed_history_size = 0;
   std::map<std::string, double> results;
 };
-
-/**
- * Reads a parameter file, applies "Subsection/Entry=value" overrides, builds the
- * simulation of the declared dimension and runs it. Throws on bad input before
- * anything is written.
- */
-std::map<std::string, double>
-run_parameter_file(const std::string &file, const std::vector<std::string> &overrides,
-                   std::ostream &console = std::cout, const std::string &resume = "");
-
-/// Applies "A/B/Entry=value" overrides; with @p skip_unknown, unknown entries are
-/// ignored.
-void apply_overrides(ParameterHandler &prm, const std::vector<std::string> &overrides,
-                     bool skip_unknown);
-
-/// Writes the documented default parameter file of a 2D run.
-void print_default_parameters(std::ostream &out);
 } // namespace lme_mpm
 
 #endif

@@ -1,0 +1,38 @@
+#ifndef LME_MPM_OUTPUT_RUN_SUMMARY_H
+#define LME_MPM_OUTPUT_RUN_SUMMARY_H
+
+#include <deal.II/base/point.h>
+
+#include <lme_mpm/particles/particle_store.h>
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace lme_mpm
+{
+/// What summary.json reports: how the run ended and its values by name.
+struct RunSummary
+{
+  std::string status = "completed";
+  std::string message;
+  std::map<std::string, double> values;
+
+  /// Writes summary.json; @p checksum is the final state's (Simulation::state_checksum).
+  void write(const std::string &file, const std::string &shape_function,
+             std::uint64_t checksum, unsigned int dim) const;
+};
+
+/// The failed particles as a point set (failed_particles.csv) for scripts without a
+/// VTU reader: id, current and reference position, damage.
+template <int dim>
+void write_failed_particles(const std::string &file, const ParticleStore<dim> &particles);
+
+/// Polylines (cracks.csv): one row per point, 'crack,point,x0,x1'.
+template <int dim>
+void write_polylines(const std::string &file,
+                     const std::vector<std::vector<Point<dim>>> &lines);
+} // namespace lme_mpm
+
+#endif

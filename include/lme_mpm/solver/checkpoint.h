@@ -1,0 +1,29 @@
+#ifndef LME_MPM_SOLVER_CHECKPOINT_H
+#define LME_MPM_SOLVER_CHECKPOINT_H
+
+#include <lme_mpm/base/archive.h>
+
+#include <functional>
+#include <string>
+
+namespace lme_mpm
+{
+namespace checkpoint
+{
+/**
+ * Writes @p file through @p serialize, after the format's magic and version.
+ * Atomic: the data go to file.tmp, which replaces the file only when complete; the
+ * file it replaces is kept as file.prev.
+ */
+void write(const std::string &file, const std::function<void(Archive &)> &serialize);
+
+/**
+ * Reads @p file through @p serialize after checking the magic and the version.
+ * Throws ExcBadInput("--resume", ...) for a missing, foreign, other-version or
+ * truncated file.
+ */
+void read(const std::string &file, const std::function<void(Archive &)> &serialize);
+} // namespace checkpoint
+} // namespace lme_mpm
+
+#endif

@@ -1,0 +1,50 @@
+#ifndef LME_MPM_SOLVER_CRACK_FACE_CONTACT_H
+#define LME_MPM_SOLVER_CRACK_FACE_CONTACT_H
+
+#include <lme_mpm/fracture/crack_set.h>
+#include <lme_mpm/solver/grid_transfer.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace lme_mpm
+{
+/**
+ * Frictionless contact between the two fields of a crack node: where the faces have
+ * closed (the fields' mean displacements no longer open the crack) and approach
+ * each other along the crack normal, both take the mass-weighted mean normal
+ * velocity, which conserves momentum. Applied to the displacement rates, then to
+ * the accelerations with the trial end-of-step velocity rate + gamma dt a, so that
+ * faces pulled apart by their forces separate even when their rates were made equal.
+ */
+template <int dim>
+class CrackFaceContact
+{
+public:
+  CrackFaceContact(const CrackSet<dim> &cracks, GridTransfer<dim> &transfer,
+                   const ParticleStore<dim> &particles);
+
+  /// Where the particle-to-grid transfer marks the particles whose support has a
+  /// crack node (sized for this step).
+  std::uint8_t *touched(std::size_t n_particles);
+
+  /// Decides which faces are closed and makes their approaching rates equal.
+  void on_rates(double mass_tolerance);
+  /// The same on the accelerations, for the trial velocity rate + @p scale a.
+  void on_accelerations(double scale);
+
+private:
+  /// Changes x on the closed, approaching pairs; v = rate + scale x (rate: x itself
+  /// when @p rate is null and scale is 1).
+  void equalise(std::vector<Tensor<1, dim>> &x, const std::vector<Tensor<1, dim>> *rate,
+                double scale) const;
+
+  const CrackSet<dim> &cracks;
+  GridTransfer<dim> &transfer;
+  const ParticleStore<dim> &particles;
+  std::vector<std::uint8_t> touches_crack, faces_closed;
+  std::vector<Tensor<1, dim>> nodal_displacement;
+};
+} // namespace lme_mpm
+
+#endif

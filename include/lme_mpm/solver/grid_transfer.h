@@ -1,0 +1,186 @@
+#ifndef LME_MPM_SOLVER_GRID_TRANSFER_H
+#define LME_MPM_SOLVER_GRID_TRANSFER_H
+
+#include <deal.II/base/parallel.h>
+#include <deal.II/base/tensor.h>
+
+#include <lme_mpm/grid/background_grid.h>
+#include <lme_mpm/grid/nodal_fields.h>
+#include <lme_mpm/particles/particle_store.h>
+#include <lme_mpm/shape_functions/shape_function.h>
+#include <lme_mpm/solver/explicit_newmark.h>
+
+#include <algorithm>
+#include <functional>
+#include <utility>
+#include <vector>
+
+namespace lme_mpm
+{
+/**
+ * The transfers between particles and grid: the connectivity (shape functions) of
+ * every particle, the nodal fields, and the particle-to-grid scatter, whose sums do
+ * not depend on the thread count. Particles are sorted by cell and cut into slabs of
+ * cell layers as wide as the supports reach; slabs of one colour touch disjoint
+ * nodes and run concurrently, each in particle order (two colours in turn).
+ *
+ * The kernels (strain increments, internal forces, the Newmark corrector) are
+ * separate calls so that the solver can fuse them chunk by chunk while a chunk's
+ * connectivity is in cache.
+ */
+template <int dim>
+class GridTransfer
+{
+public:
+  /// Small enough for a chunk's connectivity to stay in the L2 cache.
+  static constexpr std::size_t chunk = 256;
+
+  GridTransfer(const BackgroundGrid<dim> &grid, ParticleStore<dim> &particles);
+
+  NodalFields<dim> &nodes() { return fields; }
+  const NodalFields<dim> &nodes() const { return fields; }
+  const Connectivity<dim> &connectivity() const { return conn; }
+  Connectivity<dim> &connectivity() { return conn; }
+  /// Threads the scatter runs on (fixed when the transfer is built).
+  unsigned int threads() const { return n_threads; }
+
+  /**
+   * Finds every particle's cell and sorts the particles by cell. Returns the lowest
+   * index of a particle outside the grid (reproducible), or the number of particles.
+   */
+  std::size_t locate_and_sort();
+
+  /**
+   * Computes the shape functions chunk by chunk, lets @p remap(begin, end) redirect
+   * particle-node pairs to other fields of a node (explicit cracks), and scatters
+   * mass, momentum and mass-weighted acceleration to the nodal fields, clearing first
+   * what the last step wrote and the fields of @p extra_nodes.
+   */
+  void particles_to_grid(const ShapeFunction<dim> &shape_function,
+                         const std::vector<unsigned int> &extra_nodes,
+                         const std::function<void(std::size_t, std::size_t)> &remap);
+
+  /// Displacement rate w = v + dt/2 a on every field with mass.
+  void predict_rates(const ExplicitNewmark &newmark, double dt, double mass_tolerance);
+  /// Strain increment, strain, density, volume and displacement increment of
+  /// [begin, end) from the nodal rates.
+  void strain_increments(std::size_t begin, std::size_t end, double dt);
+  /// Internal forces (damaged stress) and body force of [begin, end) on the nodes.
+  void forces(std::size_t begin, std::size_t end, const Tensor<1, dim> &body_force);
+  /// a = f / m on every field with mass.
+  void accelerations(double mass_tolerance);
+  /**
+   * Newmark corrector on the particles, their position update and the sanity
+   * checks. Returns the work of the body force over the step; @p bad receives the
+   * lowest index of a particle that moved more than @p max_move, or whose velocity
+   * is not finite or density not positive (the number of particles if none).
+   */
+  double grid_to_particles(const ExplicitNewmark &newmark, double dt,
+                           const Tensor<1, dim> &body_force, double max_move,
+                           std::size_t &bad);
+
+  /// Mx = M_C x with the consistent mass matrix (two transfers, no matrix stored).
+  void apply_consistent_mass(const std::vector<Tensor<1, dim>> &x,
+                             std::vector<Tensor<1, dim>> &Mx);
+  /**
+   * @p n Jacobi corrections of x on M_C x = rhs preconditioned by the lumped mass,
+   * starting from the lumped solution; @p constrain(x) re-imposes the constraints.
+   */
+  template <class Constrain>
+  void correct_towards_consistent_mass(std::vector<Tensor<1, dim>> &x,
+                                       const std::vector<Tensor<1, dim>> &rhs,
+                                       unsigned int n, double mass_tolerance,
+                                       const Constrain &constrain)
+  {
+    for (unsigned int k = 0; k < n; ++k)
+    {
+      apply_consistent_mass(x, fields.scratch);
+      fields.for_active(
+          [&](const unsigned int I)
+          {
+            if (fields.mass[I] > mass_tolerance)
+              x[I] += (rhs[I] - fields.scratch[I]) / fields.mass[I];
+          });
+      constrain(x);
+    }
+  }
+
+  /// Calls f(p) for every particle in the scatter's order (see the class).
+  template <class F>
+  void scatter(const F &f) const
+  {
+    scatter_chunks(
+        [&](const std::size_t b, const std::size_t e)
+        {
+          for (std::size_t p = b; p < e; ++p)
+            f(p);
+        });
+  }
+
+  /// The scatter's order, handing f(begin, end) chunks of at most `chunk` particles.
+  template <class F>
+  void scatter_chunks(const F &f) const
+  {
+    // Slabs of slab_below + slab_above cell layers: every scattering particle's
+    // support lies within slab_below layers below and slab_above above its own, so
+    // slabs of one colour touch disjoint nodes.
+    const auto &offsets         = particles.cell_offsets();
+    const unsigned int cpl      = grid.cells_per_layer();
+    const unsigned int n_layers = grid.n_cells_in(dim - 1);
+    const unsigned int w        = std::max(1u, slab_below + slab_above);
+    const unsigned int n_slabs  = (n_layers + w - 1) / w;
+    auto run_slab               = [&](const unsigned int s)
+    {
+      const std::size_t b = offsets[s * w * cpl];
+      const std::size_t e = offsets[std::min((s + 1) * w, n_layers) * cpl];
+      for (std::size_t c = b; c < e; c += chunk)
+        f(c, std::min(e, c + chunk));
+    };
+    for (unsigned int colour = 0; colour < 2; ++colour)
+    {
+      const unsigned int n_this = (n_slabs + 1 - colour) / 2;
+      if (n_threads == 1 || n_this < 2)
+        for (unsigned int i = 0; i < n_this; ++i)
+          run_slab(colour + 2 * i);
+      else
+        dealii::parallel::apply_to_subranges(
+            0u, n_this,
+            [&](const unsigned int i0, const unsigned int i1)
+            {
+              for (unsigned int i = i0; i < i1; ++i)
+                run_slab(colour + 2 * i);
+            },
+            1);
+    }
+  }
+
+  template <class Archive>
+  void serialize(Archive &ar)
+  {
+    ar(slab_below, slab_above);
+  }
+
+private:
+  /// How many cell layers the supports of [begin, end) reach below and above their
+  /// particles' layers.
+  std::pair<unsigned int, unsigned int> support_reach(std::size_t begin,
+                                                      std::size_t end) const;
+  /// Mass, momentum and mass-weighted acceleration of [begin, end) on the nodes.
+  void scatter_particles(std::size_t begin, std::size_t end);
+
+  const BackgroundGrid<dim> &grid;
+  ParticleStore<dim> &particles;
+  const unsigned int n_threads;
+  Connectivity<dim> conn;
+  NodalFields<dim> fields;
+  // How many cell layers the supports have reached below and above their particles'
+  // layers so far: the slab width of the scatter.
+  unsigned int slab_below = 0, slab_above = 0;
+  /// Per particle: the displacement increment of the step.
+  std::vector<Tensor<1, dim>> increment;
+  /// Per particle: scratch of the consistent-mass product.
+  std::vector<Tensor<1, dim>> particle_scratch;
+};
+} // namespace lme_mpm
+
+#endif

@@ -1,0 +1,84 @@
+#ifndef LME_MPM_SOLVER_RUN_PARAMETERS_H
+#define LME_MPM_SOLVER_RUN_PARAMETERS_H
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
+
+#include <lme_mpm/base/parameters.h>
+
+#include <string>
+
+namespace lme_mpm
+{
+using namespace dealii;
+
+/// How many of each repeated subsection a parameter file declares (read first).
+struct ParameterCounts
+{
+  unsigned int dim         = 2;
+  unsigned int materials   = 1;
+  unsigned int bodies      = 1;
+  unsigned int constraints = 0;
+  unsigned int probes      = 0;
+
+  static void declare_parameters(ParameterHandler &prm);
+  void parse_parameters(ParameterHandler &prm);
+
+private:
+  void entries(EntryList &list);
+};
+
+/**
+ * The run's own entries: the problem (thickness, plane assumption, body force), time
+ * stepping, output cadence and checkpoints, and the shape-function selection. The
+ * parts with entries of their own (grid, materials, bodies, constraints, ...) read
+ * those themselves.
+ */
+template <int dim>
+struct RunParameters
+{
+  // Problem
+  double thickness  = 1;
+  bool plane_stress = false;
+  Tensor<1, dim> body_force;
+  // Time
+  double end_time = 1, cfl = 0.3, fixed_time_step = 0, max_cfl = 1, newmark_gamma = 0.5;
+  unsigned int mass_corrections = 0;
+  // Output
+  std::string directory;
+  double output_interval = 0;
+  bool write_particles = true, write_grid = false;
+  std::string peak_force_set;
+  unsigned int verbosity = 1;
+  // Checkpoint
+  unsigned int checkpoint_every_steps = 0;
+  double checkpoint_every_seconds     = 0;
+  // Shape functions
+  std::string shape_function;
+
+  static void declare_parameters(ParameterHandler &prm);
+  /// Reads and checks the entries; throws ExcBadInput naming the entry.
+  void parse_parameters(ParameterHandler &prm);
+
+private:
+  void entries(EntryList &list);
+  std::string plane_assumption, body_force_text;
+};
+
+/// The time step and the number of steps that land exactly on the end time.
+struct TimeStepping
+{
+  double dt            = 0;
+  unsigned int n_steps = 0;
+};
+
+/**
+ * The time step from the CFL number or the fixed step, checked against the stability
+ * limit Maximum CFL * h_min / c_P; throws ExcBadInput naming the entry.
+ */
+template <int dim>
+TimeStepping stable_time_step(const RunParameters<dim> &run, double h_min,
+                              double max_wave_speed);
+} // namespace lme_mpm
+
+#endif

@@ -1,0 +1,161 @@
+#include <deal.II/base/parsed_function.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <lme_mpm/base/input.h>
+#include <lme_mpm/geometry/geometry.h>
+#include <lme_mpm/geometry/particle_generator.h>
+
+#include <array>
+#include <memory>
+
+namespace lme_mpm
+{
+namespace
+{
+/// Calls f(ijk) for every multi-index in the box [lo, hi] (inclusive), first index
+/// fastest.
+template <int dim, class F>
+void for_each_index(const std::array<unsigned int, dim> &lo,
+                    const std::array<unsigned int, dim> &hi, const F &f)
+{
+  std::array<unsigned int, dim> ijk = lo;
+  while (true)
+  {
+    f(ijk);
+    unsigned int d = 0;
+    while (d < dim && ++ijk[d] > hi[d])
+      ijk[d] = lo[d], ++d;
+    if (d == dim)
+      break;
+  }
+}
+} // namespace
+
+template <int dim>
+void ParticleGenerator<dim>::declare_parameters(ParameterHandler &prm,
+                                                const unsigned int n_bodies)
+{
+  for (unsigned int b = 0; b < n_bodies; ++b)
+  {
+    prm.enter_subsection(input::subsection_name("Body", b));
+    prm.declare_entry("Material", "1", Patterns::Integer(1),
+                      "Number N of the 'Material N' the body is made of.");
+    prm.declare_entry(
+        "Shape", dim == 2 ? "rectangle(0, 0, 1, 1)" : "rectangle(0, 0, 0, 1, 1, 1)",
+        Patterns::Anything(),
+        "Region the body fills: " + GeometryRegistry<dim>::instance().documentation());
+    prm.declare_entry("Holes", "", Patterns::Anything(),
+                      "Regions removed from the shape (notches, holes), separated by "
+                      "';', in the same form as 'Shape'.");
+    prm.declare_entry("Particle placement", "gauss", Patterns::Selection("gauss|uniform"),
+                      "'gauss': particles at the Gauss points of each cell (the paper's "
+                      "choice); 'uniform': at the centres of equal sub-cells, so that "
+                      "particle boxes tile the body (what uGIMP assumes).");
+    prm.declare_entry("Particles per cell direction", "2", Patterns::Integer(1, 8),
+                      "Particles at the Gauss points of each background cell, this "
+                      "many per direction.");
+    prm.enter_subsection("Initial velocity");
+    Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
+    prm.leave_subsection();
+    prm.leave_subsection();
+  }
+}
+
+template <int dim>
+std::vector<BodyPlacement>
+ParticleGenerator<dim>::fill(ParameterHandler &prm, const unsigned int n_bodies,
+                             const BackgroundGrid<dim> &grid,
+                             const std::vector<double> &densities, const double thickness,
+                             ParticleStore<dim> &store)
+{
+  const auto &geometries = GeometryRegistry<dim>::instance();
+  const double tol       = 1e-9 * (grid.upper_corner() - grid.lower_corner()).norm();
+  std::vector<BodyPlacement> bodies;
+  for (unsigned int b = 0; b < n_bodies; ++b)
+  {
+    BodyPlacement body;
+    body.section = input::subsection_name("Body", b);
+    prm.enter_subsection(body.section);
+    body.material = prm.get_integer("Material") - 1;
+    AssertThrow(body.material < densities.size(),
+                ExcBadInput(body.section + "/Material",
+                            "must be between 1 and Problem/Number of materials = " +
+                                std::to_string(densities.size())));
+    const auto shape = geometries.create(prm.get("Shape"), body.section + "/Shape");
+    std::vector<std::unique_ptr<Geometry<dim>>> holes;
+    for (const auto &h : input::split(prm.get("Holes"), ';'))
+      holes.push_back(geometries.create(h, body.section + "/Holes"));
+    body.particles_per_cell      = prm.get_integer("Particles per cell direction");
+    const bool uniform_placement = prm.get("Particle placement") == "uniform";
+    Functions::ParsedFunction<dim> velocity(dim);
+    input::parse_function(prm, "Initial velocity", velocity,
+                          body.section + "/Initial velocity");
+    prm.leave_subsection();
+
+    // The body must lie inside the grid, or part of it would silently vanish.
+    const auto box = shape->bounding_box().get_boundary_points();
+    for (unsigned int d = 0; d < dim; ++d)
+      if (box.first[d] > -1e299)
+        AssertThrow(box.first[d] >= grid.lower_corner()[d] - tol &&
+                        box.second[d] <= grid.upper_corner()[d] + tol,
+                    ExcBadInput(body.section + "/Shape",
+                                std::string("the body reaches outside the background "
+                                            "grid along ") +
+                                    "xyz"[d]));
+
+    // Quadrature points of the background cells that overlap the body's box.
+    std::array<unsigned int, dim> lo, hi, q_lo{}, q_hi;
+    for (unsigned int d = 0; d < dim; ++d)
+    {
+      grid.locate(std::max(box.first[d], grid.coordinates(d).front()), d, lo[d]);
+      grid.locate(std::min(box.second[d], grid.coordinates(d).back()), d, hi[d]);
+      q_hi[d] = body.particles_per_cell - 1;
+    }
+    const QGauss<1> gauss_rule(body.particles_per_cell);
+    const QIterated<1> uniform_rule(QMidpoint<1>(), body.particles_per_cell);
+    const Quadrature<1> &rule = uniform_placement
+                                    ? static_cast<const Quadrature<1> &>(uniform_rule)
+                                    : static_cast<const Quadrature<1> &>(gauss_rule);
+    const double rho          = densities[body.material];
+    const std::size_t before  = store.size();
+    for_each_index<dim>(lo, hi,
+                        [&](const std::array<unsigned int, dim> &ijk)
+                        {
+                          for_each_index<dim>(
+                              q_lo, q_hi,
+                              [&](const std::array<unsigned int, dim> &q)
+                              {
+                                Point<dim> x;
+                                double volume = dim == 2 ? thickness : 1.0;
+                                for (unsigned int d = 0; d < dim; ++d)
+                                {
+                                  const double h = grid.spacing(d, ijk[d]);
+                                  x[d]           = grid.coordinates(d)[ijk[d]] +
+                                         h * rule.point(q[d])[0];
+                                  volume *= h * rule.weight(q[d]);
+                                }
+                                bool keep = shape->inside(x);
+                                for (const auto &h : holes)
+                                  keep = keep && !h->inside(x);
+                                if (!keep)
+                                  return;
+                                const std::size_t p =
+                                    store.add(x, rho * volume, volume, body.material, b);
+                                for (unsigned int d = 0; d < dim; ++d)
+                                  store.velocity[p][d] = velocity.value(x, d);
+                              });
+                        });
+    AssertThrow(store.size() > before,
+                ExcBadInput(body.section + "/Shape",
+                            "the body holds no particle: it is smaller than a cell or "
+                            "fully cut away"));
+    bodies.push_back(body);
+  }
+  for (std::size_t p = 0; p < store.size(); ++p)
+    store.id[p] = static_cast<std::uint32_t>(p);
+  return bodies;
+}
+
+template class ParticleGenerator<2>;
+template class ParticleGenerator<3>;
+} // namespace lme_mpm

@@ -1,0 +1,95 @@
+#include <lme_mpm/solver/crack_face_contact.h>
+
+namespace lme_mpm
+{
+template <int dim>
+CrackFaceContact<dim>::CrackFaceContact(const CrackSet<dim> &cracks,
+                                        GridTransfer<dim> &transfer,
+                                        const ParticleStore<dim> &particles)
+    : cracks(cracks), transfer(transfer), particles(particles)
+{
+}
+
+template <int dim>
+std::uint8_t *CrackFaceContact<dim>::touched(const std::size_t n_particles)
+{
+  touches_crack.resize(n_particles);
+  return touches_crack.data();
+}
+
+template <int dim>
+void CrackFaceContact<dim>::on_rates(const double mass_tolerance)
+{
+  if (!cracks.face_contact() || cracks.n_crack_nodes() == 0)
+    return;
+  const NodalFields<dim> &nodes = transfer.nodes();
+  const Connectivity<dim> &conn = transfer.connectivity();
+  const unsigned int n_grid     = nodes.layout.n_grid_nodes();
+  // Mass-weighted particle displacements of both fields of the crack nodes (the only
+  // entries written and read), summed in the scatter's order.
+  nodal_displacement.resize(nodes.mass.size());
+  for (unsigned int J = 0; J < cracks.n_crack_nodes(); ++J)
+    nodal_displacement[cracks.primary_of(J)] = nodal_displacement[cracks.field_of(J)] =
+        Tensor<1, dim>();
+  transfer.scatter(
+      [&](const std::size_t p)
+      {
+        if (!touches_crack[p])
+          return;
+        const std::size_t o = p * conn.stride;
+        const Tensor<1, dim> u =
+            particles.mass[p] * (particles.position[p] - particles.reference_position[p]);
+        for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+        {
+          const unsigned int K = conn.nodes[o + k];
+          if (K >= n_grid || cracks.crack_node(K) != numbers::invalid_unsigned_int)
+            nodal_displacement[K] += conn.N[o + k] * u;
+        }
+      });
+  faces_closed.assign(cracks.n_crack_nodes(), 0);
+  for (unsigned int J = 0; J < cracks.n_crack_nodes(); ++J)
+  {
+    const unsigned int I = cracks.primary_of(J), K = cracks.field_of(J);
+    const double mI = nodes.mass[I], mK = nodes.mass[K];
+    faces_closed[J] =
+        mI > mass_tolerance && mK > mass_tolerance &&
+        (nodal_displacement[I] / mI - nodal_displacement[K] / mK) * cracks.normal_of(J) >=
+            0;
+  }
+  equalise(transfer.nodes().rate, nullptr, 1.0);
+}
+
+template <int dim>
+void CrackFaceContact<dim>::on_accelerations(const double scale)
+{
+  if (!cracks.face_contact() || cracks.n_crack_nodes() == 0)
+    return;
+  equalise(transfer.nodes().acceleration, &transfer.nodes().rate, scale);
+}
+
+template <int dim>
+void CrackFaceContact<dim>::equalise(std::vector<Tensor<1, dim>> &x,
+                                     const std::vector<Tensor<1, dim>> *rate,
+                                     const double scale) const
+{
+  const std::vector<double> &mass = transfer.nodes().mass;
+  for (unsigned int J = 0; J < cracks.n_crack_nodes(); ++J)
+  {
+    if (!faces_closed[J])
+      continue;
+    const unsigned int I = cracks.primary_of(J), K = cracks.field_of(J);
+    const Tensor<1, dim> &n = cracks.normal_of(J);
+    const double mI = mass[I], mK = mass[K];
+    const double vI = rate ? ((*rate)[I] + scale * x[I]) * n : x[I] * n;
+    const double vK = rate ? ((*rate)[K] + scale * x[K]) * n : x[K] * n;
+    if (!(vI > vK))
+      continue;
+    const double mean = (mI * vI + mK * vK) / (mI + mK);
+    x[I] += ((mean - vI) / scale) * n;
+    x[K] += ((mean - vK) / scale) * n;
+  }
+}
+
+template class CrackFaceContact<2>;
+template class CrackFaceContact<3>;
+} // namespace lme_mpm

@@ -1,0 +1,279 @@
+#include <deal.II/base/multithread_info.h>
+
+#include <lme_mpm/base/parallel.h>
+#include <lme_mpm/solver/grid_transfer.h>
+
+#include <atomic>
+#include <cmath>
+
+namespace lme_mpm
+{
+namespace
+{
+/// The lowest of the indices offered, from any thread (a reproducible report).
+void keep_lowest(std::atomic<std::size_t> &lowest, const std::size_t p)
+{
+  std::size_t cur = lowest.load();
+  while (p < cur && !lowest.compare_exchange_weak(cur, p))
+    ;
+}
+
+void raise_to(std::atomic<unsigned int> &m, const unsigned int v)
+{
+  unsigned int seen = m.load();
+  while (v > seen && !m.compare_exchange_weak(seen, v))
+  {
+  }
+}
+} // namespace
+
+template <int dim>
+GridTransfer<dim>::GridTransfer(const BackgroundGrid<dim> &grid,
+                                ParticleStore<dim> &particles)
+    : grid(grid), particles(particles), n_threads(MultithreadInfo::n_threads())
+{
+}
+
+template <int dim>
+std::size_t GridTransfer<dim>::locate_and_sort()
+{
+  const std::size_t n = particles.size();
+  std::atomic<std::size_t> lost{n};
+  parallel::for_range(n,
+                      [&](const std::size_t b, const std::size_t e)
+                      {
+                        std::array<unsigned int, dim> ijk;
+                        for (std::size_t p = b; p < e; ++p)
+                          if (grid.locate(particles.position[p], ijk))
+                            particles.cell[p] = grid.cell_index(ijk);
+                          else
+                            keep_lowest(lost, p);
+                      });
+  if (lost.load() < n)
+    return lost.load();
+  particles.sort_by_cell(grid.n_cells());
+  return n;
+}
+
+template <int dim>
+std::pair<unsigned int, unsigned int>
+GridTransfer<dim>::support_reach(const std::size_t begin, const std::size_t end) const
+{
+  unsigned int below = 0, above = 0;
+  for (std::size_t p = begin; p < end; ++p)
+  {
+    const unsigned int layer = grid.cell_layer(particles.cell[p]);
+    const unsigned int *row  = &conn.nodes[p * conn.stride];
+    const unsigned int lo    = grid.node_layer(row[0]);
+    const unsigned int hi    = grid.node_layer(row[conn.n_nodes[p] - 1]);
+    below                    = std::max(below, layer > lo ? layer - lo : 0u);
+    above                    = std::max(above, hi > layer ? hi - layer : 0u);
+  }
+  return {below, above};
+}
+
+template <int dim>
+void GridTransfer<dim>::scatter_particles(const std::size_t b, const std::size_t e)
+{
+  for (std::size_t p = b; p < e; ++p)
+  {
+    const std::size_t o     = p * conn.stride;
+    const double m          = particles.mass[p];
+    const Tensor<1, dim> mv = m * particles.velocity[p],
+                         ma = m * particles.acceleration[p];
+    for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+    {
+      const unsigned int I = conn.nodes[o + k];
+      const double N       = conn.N[o + k];
+      fields.mass[I] += N * m;
+      fields.momentum[I] += N * mv;
+      fields.mass_acceleration[I] += N * ma;
+    }
+  }
+}
+
+template <int dim>
+void GridTransfer<dim>::particles_to_grid(
+    const ShapeFunction<dim> &shape_function,
+    const std::vector<unsigned int> &extra_nodes,
+    const std::function<void(std::size_t, std::size_t)> &remap)
+{
+  // Each chunk gets its shape functions and scatters them while they are in cache,
+  // in slabs sized by the reach of the supports so far. A chunk whose supports reach
+  // further does not scatter (so no two threads can meet on a node); the reach is
+  // then widened and the whole transfer repeated, which happens on the first step
+  // and where supports grow. The order depends on the particles only, not on the
+  // threads.
+  fields.clear(extra_nodes);
+  conn.resize(particles.size(), shape_function.max_nodes_per_particle());
+  increment.resize(particles.size());
+  const unsigned int below = slab_below, above = slab_above;
+  std::atomic<unsigned int> reach_below{below}, reach_above{above};
+  scatter_chunks(
+      [&](const std::size_t b, const std::size_t e)
+      {
+        shape_function.compute(particles, b, e, conn);
+        const auto [chunk_below, chunk_above] = support_reach(b, e);
+        remap(b, e);
+        if (chunk_below <= below && chunk_above <= above)
+          scatter_particles(b, e);
+        raise_to(reach_below, chunk_below);
+        raise_to(reach_above, chunk_above);
+      });
+  if (reach_below.load() > below || reach_above.load() > above)
+  {
+    slab_below = reach_below.load(), slab_above = reach_above.load();
+    fields.collect_active();
+    fields.clear(extra_nodes);
+    scatter_chunks([&](const std::size_t b, const std::size_t e)
+                   { scatter_particles(b, e); });
+  }
+  fields.collect_active();
+}
+
+template <int dim>
+void GridTransfer<dim>::predict_rates(const ExplicitNewmark &newmark, const double dt,
+                                      const double mass_tolerance)
+{
+  fields.for_active(
+      [&](const unsigned int I)
+      {
+        fields.rate[I] = fields.mass[I] > mass_tolerance
+                             ? newmark.displacement_rate(
+                                   fields.momentum[I] / fields.mass[I],
+                                   fields.mass_acceleration[I] / fields.mass[I], dt)
+                             : Tensor<1, dim>();
+      });
+}
+
+template <int dim>
+void GridTransfer<dim>::strain_increments(const std::size_t b, const std::size_t e,
+                                          const double dt)
+{
+  for (std::size_t p = b; p < e; ++p)
+  {
+    const std::size_t o = p * conn.stride;
+    Tensor<2, dim> grad_v;
+    Tensor<1, dim> v;
+    for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+    {
+      const Tensor<1, dim> &w = fields.rate[conn.nodes[o + k]];
+      grad_v += outer_product(w, conn.grad_N[o + k]);
+      v += conn.N[o + k] * w;
+    }
+    const SymmetricTensor<2, dim> de = dt * symmetrize(grad_v);
+    particles.strain_increment[p]    = de;
+    particles.strain[p] += de;
+    particles.density[p] /= (1 + trace(de));
+    particles.volume[p] = particles.mass[p] / particles.density[p];
+    increment[p]        = dt * v;
+  }
+}
+
+template <int dim>
+void GridTransfer<dim>::forces(const std::size_t b, const std::size_t e,
+                               const Tensor<1, dim> &body_force)
+{
+  const bool gravity = body_force.norm_square() > 0;
+  for (std::size_t p = b; p < e; ++p)
+  {
+    const std::size_t o = p * conn.stride;
+    // A full tensor: the symmetric one's element access costs more per node.
+    const Tensor<2, dim> s =
+        (particles.failed[p] ? 0.0
+                             : (1 - particles.damage[p]) * particles.initial_volume[p]) *
+        particles.stress[p];
+    const unsigned int n = conn.n_nodes[p];
+    if (gravity)
+    {
+      const Tensor<1, dim> g = particles.mass[p] * body_force;
+      for (unsigned int k = 0; k < n; ++k)
+        fields.force[conn.nodes[o + k]] += conn.N[o + k] * g - s * conn.grad_N[o + k];
+    }
+    else
+      for (unsigned int k = 0; k < n; ++k)
+        fields.force[conn.nodes[o + k]] -= s * conn.grad_N[o + k];
+  }
+}
+
+template <int dim>
+void GridTransfer<dim>::accelerations(const double mass_tolerance)
+{
+  fields.for_active(
+      [&](const unsigned int I)
+      {
+        fields.acceleration[I] = fields.mass[I] > mass_tolerance
+                                     ? fields.force[I] / fields.mass[I]
+                                     : Tensor<1, dim>();
+      });
+}
+
+template <int dim>
+double GridTransfer<dim>::grid_to_particles(const ExplicitNewmark &newmark,
+                                            const double dt,
+                                            const Tensor<1, dim> &body_force,
+                                            const double max_move, std::size_t &bad)
+{
+  const std::size_t n = particles.size();
+  std::atomic<std::size_t> first_bad{n};
+  // A constant body force does work m b . dx over the step's displacement exactly.
+  const double body_work = parallel::deterministic_sum<double>(
+      n,
+      [&](const std::size_t b, const std::size_t e)
+      {
+        double pw = 0;
+        for (std::size_t p = b; p < e; ++p)
+        {
+          const std::size_t o = p * conn.stride;
+          Tensor<1, dim> a;
+          for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+            a += conn.N[o + k] * fields.acceleration[conn.nodes[o + k]];
+          particles.velocity[p] = newmark.corrected_velocity(
+              particles.velocity[p], particles.acceleration[p], a, dt);
+          particles.acceleration[p] = a;
+          particles.position[p] += increment[p];
+          pw += particles.mass[p] * (body_force * increment[p]);
+          const double move = increment[p].norm();
+          if (!(move < max_move) || !std::isfinite(particles.velocity[p].norm_square()) ||
+              !(particles.density[p] > 0))
+            keep_lowest(first_bad, p);
+        }
+        return pw;
+      });
+  bad = first_bad.load();
+  return body_work;
+}
+
+template <int dim>
+void GridTransfer<dim>::apply_consistent_mass(const std::vector<Tensor<1, dim>> &x,
+                                              std::vector<Tensor<1, dim>> &Mx)
+{
+  // (M_C x)_I = sum_p N_Ip m_p sum_J N_Jp x_J: interpolate, then scatter back.
+  const std::size_t n = particles.size();
+  particle_scratch.resize(n);
+  parallel::for_range(n,
+                      [&](const std::size_t b, const std::size_t e)
+                      {
+                        for (std::size_t p = b; p < e; ++p)
+                        {
+                          const std::size_t o = p * conn.stride;
+                          Tensor<1, dim> xp;
+                          for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+                            xp += conn.N[o + k] * x[conn.nodes[o + k]];
+                          particle_scratch[p] = particles.mass[p] * xp;
+                        }
+                      });
+  for (const unsigned int I : fields.active)
+    Mx[I] = Tensor<1, dim>();
+  scatter(
+      [&](const std::size_t p)
+      {
+        const std::size_t o = p * conn.stride;
+        for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+          Mx[conn.nodes[o + k]] += conn.N[o + k] * particle_scratch[p];
+      });
+}
+
+template class GridTransfer<2>;
+template class GridTransfer<3>;
+} // namespace lme_mpm

@@ -1,0 +1,89 @@
+#include <lme_mpm/base/input.h>
+#include <lme_mpm/solver/run.h>
+#include <lme_mpm/solver/simulation.h>
+
+#include <filesystem>
+
+namespace lme_mpm
+{
+void apply_overrides(ParameterHandler &prm, const std::vector<std::string> &overrides,
+                     const bool skip_unknown)
+{
+  for (const auto &o : overrides)
+  {
+    const auto eq = o.find('=');
+    AssertThrow(eq != std::string::npos,
+                ExcBadInput("--set " + o, "expected 'Subsection/Entry=value'"));
+    const auto path  = input::split(o.substr(0, eq), '/');
+    const auto value = input::trim(o.substr(eq + 1));
+    AssertThrow(!path.empty(), ExcBadInput("--set " + o, "no entry named"));
+    for (std::size_t i = 0; i + 1 < path.size(); ++i)
+      prm.enter_subsection(path[i]);
+    try
+    {
+      prm.set(path.back(), value);
+    }
+    catch (const ParameterHandler::ExcEntryUndeclared &)
+    {
+      for (std::size_t i = 0; i + 1 < path.size(); ++i)
+        prm.leave_subsection();
+      AssertThrow(skip_unknown, ExcBadInput(o.substr(0, eq), "no such entry"));
+      continue;
+    }
+    catch (const ParameterHandler::ExcValueDoesNotMatchPattern &e)
+    {
+      for (std::size_t i = 0; i + 1 < path.size(); ++i)
+        prm.leave_subsection();
+      AssertThrow(skip_unknown, ExcBadInput(o.substr(0, eq), input::concise_message(e)));
+      continue;
+    }
+    for (std::size_t i = 0; i + 1 < path.size(); ++i)
+      prm.leave_subsection();
+  }
+}
+
+namespace
+{
+template <int dim>
+std::map<std::string, double>
+run_dim(const std::string &file, const std::vector<std::string> &overrides,
+        const ParameterCounts &counts, std::ostream &console, const std::string &resume)
+{
+  ParameterHandler prm;
+  Simulation<dim>::declare_parameters(prm, counts);
+  prm.parse_input(file, "", false, false);
+  apply_overrides(prm, overrides, false);
+  Simulation<dim> simulation(prm, counts, console);
+  if (!resume.empty())
+    simulation.resume_from(resume);
+  return simulation.run();
+}
+} // namespace
+
+std::map<std::string, double>
+run_parameter_file(const std::string &file, const std::vector<std::string> &overrides,
+                   std::ostream &console, const std::string &resume)
+{
+  AssertThrow(std::filesystem::exists(file),
+              ExcBadInput("parameter file", "'" + file + "' does not exist"));
+  // First pass: how many materials, bodies, ... the file declares.
+  ParameterCounts counts;
+  {
+    ParameterHandler prm;
+    ParameterCounts::declare_parameters(prm);
+    prm.parse_input(file, "", true, false);
+    apply_overrides(prm, overrides, true);
+    counts.parse_parameters(prm);
+  }
+  if (counts.dim == 2)
+    return run_dim<2>(file, overrides, counts, console, resume);
+  return run_dim<3>(file, overrides, counts, console, resume);
+}
+
+void print_default_parameters(std::ostream &out)
+{
+  ParameterHandler prm;
+  Simulation<2>::declare_parameters(prm, ParameterCounts{2, 1, 1, 1, 1});
+  prm.print_parameters(out, ParameterHandler::PRM);
+}
+} // namespace lme_mpm

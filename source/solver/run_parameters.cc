@@ -1,0 +1,178 @@
+#include <lme_mpm/base/input.h>
+#include <lme_mpm/shape_functions/shape_function.h>
+#include <lme_mpm/solver/run_parameters.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace lme_mpm
+{
+void ParameterCounts::entries(EntryList &list)
+{
+  list.enter("Problem");
+  list.add("Dimension", dim, "2", Patterns::Integer(2, 3), "Space dimension, 2 or 3.");
+  list.add("Number of materials", materials, "1", Patterns::Integer(1, 64),
+           "How many 'Material N' subsections follow.");
+  list.add("Number of bodies", bodies, "1", Patterns::Integer(1, 64),
+           "How many 'Body N' subsections follow.");
+  list.leave();
+  list.enter("Boundary conditions");
+  list.add("Number of constraints", constraints, "0", Patterns::Integer(0, 64),
+           "How many 'Constraint N' subsections follow.");
+  list.leave();
+  list.enter("Output");
+  list.add("Number of probes", probes, "0", Patterns::Integer(0, 64),
+           "How many 'Probe N' subsections follow.");
+  list.leave();
+}
+
+void ParameterCounts::declare_parameters(ParameterHandler &prm)
+{
+  EntryList list(prm, EntryList::Mode::declare);
+  ParameterCounts().entries(list);
+}
+
+void ParameterCounts::parse_parameters(ParameterHandler &prm)
+{
+  EntryList list(prm, EntryList::Mode::parse);
+  entries(list);
+}
+
+template <int dim>
+void RunParameters<dim>::entries(EntryList &list)
+{
+  list.enter("Problem");
+  list.add("Thickness", thickness, "1", Patterns::Double(0),
+           "Out-of-plane thickness of a 2D specimen (m); masses, forces and "
+           "energies are those of the specimen. Ignored in 3D.");
+  list.add("Plane assumption", plane_assumption, "plane strain",
+           Patterns::Selection("plane strain|plane stress"),
+           "How a 2D model treats the out-of-plane direction.");
+  list.add("Body force", body_force_text, "0, 0, 0", Patterns::Anything(),
+           "Body force per unit mass (m/s^2), dim components (extra ones "
+           "ignored), for example '0, -9.81'.");
+  list.leave();
+
+  list.enter("Time");
+  list.add("End time", end_time, "1", Patterns::Double(0), "Simulated time (s), > 0.");
+  list.add("CFL", cfl, "0.3", Patterns::Double(0),
+           "Time step as a fraction of h_min / c_P (c_P the fastest P-wave "
+           "speed). Used when 'Time step' is 0.");
+  list.add("Time step", fixed_time_step, "0", Patterns::Double(0),
+           "Fixed time step (s); 0 takes it from the CFL number.");
+  list.add("Maximum CFL", max_cfl, "1", Patterns::Double(0, 2),
+           "Largest accepted ratio dt c_P / h_min; a larger CFL or fixed time "
+           "step is rejected (explicit schemes are unstable beyond about 1).");
+  list.add("Mass matrix corrections", mass_corrections, "0", Patterns::Integer(0, 10),
+           "Jacobi corrections of the lumped-mass solves towards the consistent "
+           "mass matrix sum_p m_p N_Ip N_Jp (each costs two grid transfers). 0 is "
+           "the lumped mass of standard MPM and of the paper; 1-2 remove most of "
+           "the lumping's phase error, which grows with the support width "
+           "(doc/shape_functions.md).");
+  list.add("Newmark gamma", newmark_gamma, "0.5", Patterns::Double(0.5, 1),
+           "Newmark gamma in [0.5, 1]: 0.5 conserves energy (second order), "
+           "larger values damp high frequencies (first order).");
+  list.leave();
+
+  list.enter("Shape functions");
+  list.add("Type", shape_function, "linear",
+           Patterns::Selection(ShapeFunctionRegistry<dim>::instance().pattern()),
+           "Particle-node coupling. " +
+               ShapeFunctionRegistry<dim>::instance().documentation());
+  list.leave();
+
+  list.enter("Output");
+  list.add("Directory", directory, "output", Patterns::Anything(),
+           "Directory for VTU/PVD files, history.csv and summary.json.");
+  list.add("Output interval", output_interval, "0", Patterns::Double(0),
+           "Simulated time between output rows and files (s); 0: 20 per run.");
+  list.add("Write particle files", write_particles, "true", Patterns::Bool(),
+           "Write particle VTU files (history.csv and summary.json always).");
+  list.add("Write grid files", write_grid, "false", Patterns::Bool(),
+           "Also write the background grid with nodal velocity and mass.");
+  list.add("Peak force set", peak_force_set, "", Patterns::Anything(),
+           "Name of a constrained node set and a component, 'top:y': summary.json "
+           "then reports peak_force (largest reaction, checked every step) and "
+           "displacement_at_peak (the set's imposed displacement then).");
+  list.add("Verbosity", verbosity, "1", Patterns::Integer(0, 2),
+           "0: errors only; 1: progress and timing; 2: more.");
+  list.leave();
+
+  list.enter("Checkpoint");
+  list.add("Every steps", checkpoint_every_steps, "0", Patterns::Integer(0),
+           "Write output/checkpoint.bin every this many steps (0: never); the "
+           "previous one is kept as checkpoint.bin.prev. --resume DIR continues.");
+  list.add("Every seconds", checkpoint_every_seconds, "0", Patterns::Double(0),
+           "Also write one when this much wall time has passed since the last "
+           "(0: never).");
+  list.leave();
+}
+
+template <int dim>
+void RunParameters<dim>::declare_parameters(ParameterHandler &prm)
+{
+  EntryList list(prm, EntryList::Mode::declare);
+  RunParameters<dim>().entries(list);
+  // The shape functions' own entries sit beside the selection.
+  prm.enter_subsection("Shape functions");
+  ShapeFunctionRegistry<dim>::instance().declare_all(prm);
+  prm.leave_subsection();
+}
+
+template <int dim>
+void RunParameters<dim>::parse_parameters(ParameterHandler &prm)
+{
+  EntryList list(prm, EntryList::Mode::parse);
+  entries(list);
+  peak_force_set = input::trim(peak_force_set);
+  AssertThrow(!input::trim(directory).empty(),
+              ExcBadInput("Output/Directory", "must not be empty"));
+  if (dim == 3)
+    thickness = 1.0;
+  input::require_range(thickness, 0, 1e300, true, "Problem/Thickness");
+  plane_stress = plane_assumption == "plane stress";
+  const auto g = input::parse_doubles(body_force_text, "Problem/Body force");
+  AssertThrow(g.size() >= dim,
+              ExcBadInput("Problem/Body force",
+                          "needs at least " + std::to_string(dim) + " components"));
+  for (unsigned int d = 0; d < dim; ++d)
+    body_force[d] = g[d];
+  input::require_range(end_time, 0, 1e300, true, "Time/End time");
+}
+
+template <int dim>
+TimeStepping stable_time_step(const RunParameters<dim> &run, const double h_min,
+                              const double c_max)
+{
+  TimeStepping ts;
+  const double dt_wave = h_min / c_max;
+  if (run.fixed_time_step > 0)
+  {
+    std::ostringstream msg;
+    msg << "dt = " << run.fixed_time_step
+        << " s exceeds the stability limit Maximum CFL * h_min / "
+        << "c_P = " << run.max_cfl * dt_wave << " s (h_min = " << h_min
+        << " m, c_P = " << c_max << " m/s)";
+    AssertThrow(run.fixed_time_step <= run.max_cfl * dt_wave * (1 + 1e-12),
+                ExcBadInput("Time/Time step", msg.str()));
+    ts.dt = run.fixed_time_step;
+  }
+  else
+  {
+    input::require_range(run.cfl, 0, run.max_cfl, false, "Time/CFL");
+    AssertThrow(run.cfl > 0, ExcBadInput("Time/CFL", "must be positive"));
+    ts.dt = run.cfl * dt_wave;
+  }
+  // Land exactly on the end time.
+  ts.n_steps = static_cast<unsigned int>(std::ceil(run.end_time / ts.dt - 1e-9));
+  AssertThrow(ts.n_steps < 2e9,
+              ExcBadInput("Time/End time", "needs more than 2e9 steps"));
+  ts.dt = run.end_time / ts.n_steps;
+  return ts;
+}
+
+template struct RunParameters<2>;
+template struct RunParameters<3>;
+template TimeStepping stable_time_step(const RunParameters<2> &, double, double);
+template TimeStepping stable_time_step(const RunParameters<3> &, double, double);
+} // namespace lme_mpm
