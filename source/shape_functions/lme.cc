@@ -71,6 +71,56 @@ inline void raw_moments(const double *w, const Tensor<1, dim> *y, const unsigned
     }
   }
 }
+
+/// N_I = w_I / Z, r and J the mean and covariance of the y_I under them; returns log Z.
+template <int dim>
+inline double normalise(double *N, const Tensor<1, dim> *y, const unsigned int n,
+                        Tensor<1, dim> &r, Tensor<2, dim> &J)
+{
+  double Z;
+  raw_moments(N, y, n, Z, r, J);
+  const double inv_Z = 1 / Z;
+  for (unsigned int I = 0; I < n; ++I)
+    N[I] *= inv_Z;
+  r *= inv_Z;
+  for (unsigned int i = 0; i < dim; ++i)
+    for (unsigned int j = i; j < dim; ++j)
+      J[j][i] = J[i][j] = J[i][j] * inv_Z - r[i] * r[j];
+  return std::log(Z);
+}
+
+/// F = log Z, N, r = d log Z / d mu and J = d r / d mu at mu (scaled lambda).
+template <int dim>
+inline void evaluate(const double *a, const Tensor<1, dim> *y, const unsigned int n,
+                     const Tensor<1, dim> &mu, double *N, double &F, Tensor<1, dim> &r,
+                     Tensor<2, dim> &J)
+{
+  double f_max = -std::numeric_limits<double>::infinity();
+  for (unsigned int I = 0; I < n; ++I)
+  {
+    N[I]  = a[I] + mu * y[I];
+    f_max = std::max(f_max, N[I]);
+  }
+  exponentiate(N, n, f_max);
+  F = f_max + normalise(N, y, n, r, J);
+}
+
+/// evaluate() at mu + step from its results at mu, without exponentials: N_I(mu + step)
+/// is proportional to N_I(mu) exp(t), t = step . (y_I - r), here the cubic Taylor
+/// polynomial of exp(t); the normalisation absorbs the common factor exactly.
+template <int dim>
+inline void polynomial_step(const Tensor<1, dim> *y, const unsigned int n,
+                            const Tensor<1, dim> &step, double *N, double &F,
+                            Tensor<1, dim> &r, Tensor<2, dim> &J)
+{
+  for (unsigned int I = 0; I < n; ++I)
+  {
+    const double t = step * (y[I] - r);
+    N[I] *= 1 + t * (1 + t * (0.5 + t * (1. / 6)));
+  }
+  const double step_r = step * r; // log Z(mu + step) - log Z(mu) = step . r + log S
+  F += step_r + normalise(N, y, n, r, J);
+}
 } // namespace
 
 /**
@@ -124,6 +174,7 @@ public:
   LME(ParameterHandler &prm, const ShapeFunctionContext<dim> &context)
       : grid(*context.grid), gamma(prm.get_double("LME gamma")),
         newton_tol(prm.get_double("LME Newton tolerance")),
+        cheap_step_limit(std::pow(24 * newton_tol, 0.25)),
         max_iterations(prm.get_integer("LME maximum iterations")),
         radius_over_h(std::sqrt(-std::log(prm.get_double("LME tolerance")) / gamma))
   {
@@ -168,319 +219,27 @@ public:
                const std::size_t end, Connectivity<dim> &conn) const override
   {
     Assert(conn.stride >= max_nodes, ExcInternalError());
-    // Per-call scratch, shared by all particles of the range: scaled offsets
-    // y_I = (x - x_I) / h and the fixed part -gamma |y_I|^2 of the exponent.
-    std::vector<Tensor<1, dim>> y(max_nodes);
-    std::vector<double> a(max_nodes);
-    std::array<std::vector<double>, dim> y1d;
-    std::array<unsigned int, dim> first, count, cell;
+    Scratch scratch;
+    scratch.y.resize(max_nodes), scratch.a.resize(max_nodes);
     for (unsigned int d = 0; d < dim; ++d)
-      y1d[d].resize(max_box_1d);
-    const double R2 = radius_over_h * radius_over_h;
-    // Largest |s . (y_I - r)| of a Newton step taken with the cubic Taylor
-    // polynomial of exp: its relative error t^4 / 24 stays below newton_tol.
-    const double cheap_step_limit = std::pow(24 * newton_tol, 0.25);
-    const Tensor<2, dim> unit     = unit_symmetric_tensor<dim>();
-
-    std::uint64_t local_solves = 0, local_iterations = 0, local_evaluations = 0,
-                  local_cheap = 0;
-    unsigned int local_max    = 0;
-
+      scratch.y1d[d].resize(max_box_1d);
     for (std::size_t p = begin; p < end; ++p)
     {
-      const Point<dim> &x   = particles.position[p];
-      unsigned int *nodes   = &conn.nodes[p * conn.stride];
-      double *N             = &conn.N[p * conn.stride];
-      Tensor<1, dim> *gradN = &conn.grad_N[p * conn.stride];
-      const auto fail       = [&](const std::string &reason)
-      {
-        AssertThrow(false, ExcShapeFunctionFailure("lme", particles.id[p],
-                                                   point_to_string(x), reason));
-      };
-
-      if (!grid.locate(x, cell))
-        fail("the particle is outside the grid");
-      double h = std::numeric_limits<double>::max();
-      for (unsigned int d = 0; d < dim; ++d)
-        h = std::min(h, grid.spacing(d, cell[d]));
-      const double inv_h = 1 / h;
-      const double R     = radius_over_h * h;
-
-      // Index box of the nodes within [x - R, x + R] in each direction.
-      for (unsigned int d = 0; d < dim; ++d)
-      {
-        const auto &c   = grid.coordinates(d);
-        const double lo = x[d] - R, hi = x[d] + R;
-        unsigned int i_lo = 0, i_hi = c.size() - 1;
-        if (lo > c.front())
-        {
-          grid.locate(lo, d, i_lo);
-          if (c[i_lo] < lo)
-            ++i_lo;
-        }
-        if (hi < c.back())
-          grid.locate(hi, d, i_hi);
-        first[d] = i_lo;
-        count[d] = i_hi + 1 - i_lo;
-        Assert(count[d] <= max_box_1d, ExcInternalError());
-        for (unsigned int k = 0; k < count[d]; ++k)
-          y1d[d][k] = (x[d] - c[i_lo + k]) * inv_h;
-      }
-
-      // Candidates inside the ball, in increasing node index order.
-      unsigned int n = 0;
-      Tensor<1, dim> y_min, y_max, yI;
-      for (unsigned int d = 0; d < dim; ++d)
-        y_min[d] = std::numeric_limits<double>::infinity(), y_max[d] = -y_min[d];
-      const auto keep =
-          [&](const unsigned int node, const Tensor<1, dim> &yn, const double q)
-      {
-        // Cannot happen (max_nodes bounds the ball); guards the connectivity row.
-        if (n == max_nodes)
-          fail("more nodes in the support than max_nodes_per_particle()");
-        nodes[n] = node;
-        y[n]     = yn;
-        a[n]     = -gamma * q;
-        for (unsigned int d = 0; d < dim; ++d)
-          y_min[d] = std::min(y_min[d], yn[d]), y_max[d] = std::max(y_max[d], yn[d]);
-        ++n;
-      };
-      if constexpr (dim == 2)
-      {
-        for (unsigned int j = 0; j < count[1]; ++j)
-        {
-          const double qj = y1d[1][j] * y1d[1][j];
-          if (qj > R2)
-            continue;
-          const unsigned int row = (first[1] + j) * grid.node_stride(1) + first[0];
-          for (unsigned int i = 0; i < count[0]; ++i)
-          {
-            const double q = y1d[0][i] * y1d[0][i] + qj;
-            if (q <= R2)
-            {
-              yI[0] = y1d[0][i], yI[1] = y1d[1][j];
-              keep(row + i, yI, q);
-            }
-          }
-        }
-      }
-      else
-      {
-        for (unsigned int k = 0; k < count[2]; ++k)
-        {
-          const double qk = y1d[2][k] * y1d[2][k];
-          if (qk > R2)
-            continue;
-          for (unsigned int j = 0; j < count[1]; ++j)
-          {
-            const double qj = y1d[1][j] * y1d[1][j] + qk;
-            if (qj > R2)
-              continue;
-            const unsigned int row = (first[2] + k) * grid.node_stride(2) +
-                                     (first[1] + j) * grid.node_stride(1) + first[0];
-            for (unsigned int i = 0; i < count[0]; ++i)
-            {
-              const double q = y1d[0][i] * y1d[0][i] + qj;
-              if (q <= R2)
-              {
-                yI[0] = y1d[0][i], yI[1] = y1d[1][j], yI[2] = y1d[2][k];
-                keep(row + i, yI, q);
-              }
-            }
-          }
-        }
-      }
-      // The multiplier is finite only if x is strictly inside the hull of its
-      // nodes; on a grid that needs nodes on both sides in every direction.
-      for (unsigned int d = 0; d < dim; ++d)
-        if (!(y_min[d] < 0 && y_max[d] > 0))
-        {
-          std::ostringstream s;
-          s << "the particle is not strictly inside the convex hull of its " << n
-            << " nodes within R = " << R << " (no node on one side along direction " << d
-            << "): it lies on the grid boundary, or the support is too small for "
-               "its cell (lower 'LME gamma' = "
-            << gamma << " or 'LME tolerance')";
-          fail(s.str());
-        }
-
-      // log Z, N, r = d log Z / d mu and J = d r / d mu at mu (scaled lambda).
-      const auto evaluate =
-          [&](const Tensor<1, dim> &mu, double &F, Tensor<1, dim> &r, Tensor<2, dim> &J)
-      {
-        double f_max = -std::numeric_limits<double>::infinity();
-        for (unsigned int I = 0; I < n; ++I)
-        {
-          N[I]  = a[I] + mu * y[I];
-          f_max = std::max(f_max, N[I]);
-        }
-        exponentiate(N, n, f_max);
-        double Z;
-        raw_moments(N, y.data(), n, Z, r, J);
-        const double inv_Z = 1 / Z;
-        for (unsigned int I = 0; I < n; ++I)
-          N[I] *= inv_Z;
-        r *= inv_Z;
-        for (unsigned int i = 0; i < dim; ++i)
-          for (unsigned int j = i; j < dim; ++j)
-            J[j][i] = J[i][j] = J[i][j] * inv_Z - r[i] * r[j];
-        F = f_max + std::log(Z);
-      };
-      // J is a covariance of the y_I; it loses rank only if the weights
-      // concentrate on a lower-dimensional set of nodes.
-      const auto singular = [](const Tensor<2, dim> &J)
-      {
-        const double scale = trace(J) / dim;
-        return !(determinant(J) > 1e-12 * std::pow(scale, dim));
-      };
-      const auto report = [&](const char *what, const unsigned int it,
-                              const Tensor<1, dim> &r, const Tensor<1, dim> &mu)
-      {
-        std::ostringstream s;
-        s << what << " after " << it << " Newton iterations (gamma = " << gamma << ", "
-          << n << " nodes): |r|/h = " << r.norm() << " (tolerance " << newton_tol
-          << "), |lambda| h = " << mu.norm();
-        fail(s.str());
-      };
-
-      // Warm start extrapolated along the motion since the last solve: on r(mu, x) =
-      // 0 the implicit function theorem gives d mu / d(x / h) = 2 gamma I - J^-1, so
-      // the first residual is second order in the particle's displacement.
-      Tensor<1, dim> mu =
-          (particles.lme_lambda[p] +
-           particles.lme_lambda_rate[p] * (x - particles.lme_position[p])) *
-          h;
-      Tensor<1, dim> r, r_trial, mu_trial;
-      Tensor<2, dim> J, J_trial;
-      double F, F_trial;
-      evaluate(mu, F, r, J);
-      ++local_evaluations;
-      unsigned int it = 0, cheap = 0; // all steps; those without exponentials
-      while (!(r.norm() < newton_tol))
-      {
-        if (it == max_iterations)
-          report("not converged", it, r, mu);
-        if (!std::isfinite(F) || singular(J))
-          report("singular Hessian", it, r, mu);
-        // Newton step s = -J^-1 r plus, where it is a small correction, Chebyshev's
-        // third-order term -J^-1 T(s, s) / 2 with T = dJ/dmu the third cumulant
-        // sum_I N_I z_I (x) z_I (x) z_I, z_I = y_I - r. It costs one pass without
-        // exponentials and turns the quadratic convergence cubic: a warm start then
-        // needs 1-2 steps instead of 2-3, and fewer particles near grid lines at
-        // large gamma (small J, so lambda moves a lot with x) need a fourth.
-        const Tensor<2, dim> J_inv_step = invert(J);
-        Tensor<1, dim> step             = -(J_inv_step * r);
-        // Near the solution (the common case after the extrapolated warm start) the
-        // step is taken without exponentials: N_I(mu + s) is proportional to N_I(mu)
-        // exp(s . (y_I - r)), and the cubic Taylor polynomial p(t) of exp(t) is
-        // within t^4 / 24 <= newton_tol of it for |t| below cheap_step_limit; the
-        // normalisation absorbs the common factor exactly.
-        if (step.norm() * (radius_over_h + r.norm()) < cheap_step_limit)
-        {
-          for (unsigned int I = 0; I < n; ++I)
-          {
-            const double t = step * (y[I] - r);
-            N[I] *= 1 + t * (1 + t * (0.5 + t * (1. / 6)));
-          }
-          double S;
-          Tensor<1, dim> r_new;
-          Tensor<2, dim> J_new;
-          raw_moments(N, y.data(), n, S, r_new, J_new);
-          const double inv_S = 1 / S;
-          for (unsigned int I = 0; I < n; ++I)
-            N[I] *= inv_S;
-          F += step * r + std::log(S); // log Z(mu + s) - log Z(mu) = s . r + log S
-          r_new *= inv_S;
-          for (unsigned int i = 0; i < dim; ++i)
-            for (unsigned int j = i; j < dim; ++j)
-              J_new[j][i] = J_new[i][j] = J_new[i][j] * inv_S - r_new[i] * r_new[j];
-          mu += step, r = r_new, J = J_new;
-          ++it, ++cheap;
-          continue;
-        }
-        {
-          Tensor<1, dim> w;
-          for (unsigned int I = 0; I < n; ++I)
-          {
-            const Tensor<1, dim> z = y[I] - r;
-            const double zs        = z * step;
-            w += (N[I] * zs * zs) * z;
-          }
-          const Tensor<1, dim> c = -0.5 * (J_inv_step * w);
-          // Outside the local regime keep the plain Newton direction.
-          if (c.norm() < 0.5 * step.norm() && r * (step + c) < 0.5 * (r * step))
-            step += c;
-        }
-        const double slope = r * step; // < 0: a descent direction
-        // Line search for the Wolfe conditions along the Newton direction: enough
-        // decrease of log Z, and the directional derivative r . step shrunk to
-        // c2 |slope|. Sufficient decrease alone accepts steps that jump far past
-        // the minimum along the line, which is what costs iterations from a cold
-        // start at large gamma or near the boundary. phi(t) = log Z(mu + t step) is
-        // convex, so the sign of phi' brackets its minimum and a secant on phi'
-        // refines the step. noise: the rounding of log Z, below which a decrease
-        // cannot be measured.
-        const double noise = 32 * std::numeric_limits<double>::epsilon() *
-                             (1 + std::abs(F) + mu.norm() * radius_over_h);
-        double t = 1, t_lo = 0, t_hi = std::numeric_limits<double>::infinity();
-        double d_lo = slope, d_hi = 0;
-        for (unsigned int trial = 0;; ++trial)
-        {
-          mu_trial = mu + t * step;
-          evaluate(mu_trial, F_trial, r_trial, J_trial);
-          ++local_evaluations;
-          const double d_phi  = r_trial * step;
-          const bool decrease = F_trial <= F + c1 * t * slope + noise;
-          if ((decrease && std::abs(d_phi) <= -c2 * slope) || r_trial.norm() < newton_tol)
-            break;
-          if (trial == 60)
-            report("line search failed", it, r, mu);
-          if (!decrease || d_phi > 0)
-            t_hi = t, d_hi = d_phi;
-          else
-            t_lo = t, d_lo = d_phi;
-          if (!std::isfinite(t_hi))
-            t *= 4;
-          else
-          {
-            const double width = t_hi - t_lo;
-            const double secant =
-                (d_hi > d_lo) ? t_lo - d_lo * width / (d_hi - d_lo) : t_lo + 0.5 * width;
-            t = std::clamp(secant, t_lo + 0.01 * width, t_hi - 0.01 * width);
-          }
-        }
-        mu = mu_trial, r = r_trial, J = J_trial, F = F_trial;
-        ++it;
-      }
-      if (singular(J))
-        report("singular Hessian", it, r, mu);
-
-      // Arroyo & Ortiz's grad N_I = N_I (grad f_I - sum_J N_J grad f_J) is
-      // -N_I J^-1 (y_I - r) / h; the usual form drops r (zero at the exact
-      // multiplier), which leaves sum grad N_I = -J^-1 r / h, large where J is
-      // small (near a node at large gamma). Keeping r, both gradient consistency
-      // conditions hold to rounding whatever the Newton residual.
-      const Tensor<2, dim> J_inv = invert(J);
-      for (unsigned int I = 0; I < n; ++I)
-        gradN[I] = (-N[I] * inv_h) * (J_inv * (y[I] - r));
-      conn.n_nodes[p]              = n;
-      particles.lme_lambda[p]      = mu * inv_h;
-      particles.lme_position[p]    = x;
-      particles.lme_lambda_rate[p] = (2 * gamma * unit - J_inv) * (inv_h * inv_h);
-
-      ++local_solves;
-      local_iterations += it - cheap;
-      local_cheap += cheap;
-      local_max = std::max(local_max, it - cheap);
+      const std::size_t row = p * conn.stride;
+      double h;
+      const unsigned int n = set_up(particles, p, &conn.nodes[row], scratch, h);
+      const Solution solution =
+          solve(particles, p, n, warm_start(particles, p, h), &conn.N[row], scratch);
+      gradients(particles, p, n, h, scratch, &conn.N[row], solution, &conn.grad_N[row]);
+      conn.n_nodes[p] = n;
     }
-
-    n_solves += local_solves;
-    n_iterations += local_iterations;
-    n_evaluations += local_evaluations;
-    n_cheap_steps += local_cheap;
+    n_solves += scratch.solves;
+    n_iterations += scratch.iterations;
+    n_evaluations += scratch.evaluations;
+    n_cheap_steps += scratch.cheap;
     unsigned int seen = max_iterations_seen.load();
-    while (local_max > seen &&
-           !max_iterations_seen.compare_exchange_weak(seen, local_max))
+    while (scratch.max_iterations > seen &&
+           !max_iterations_seen.compare_exchange_weak(seen, scratch.max_iterations))
     {
     }
   }
@@ -500,6 +259,291 @@ public:
   }
 
 private:
+  /// Scratch of one compute() call, shared by its particles, and their statistics.
+  struct Scratch
+  {
+    std::vector<Tensor<1, dim>> y; ///< scaled offsets y_I = (x - x_I) / h of the nodes
+    std::vector<double> a;         ///< fixed part -gamma |y_I|^2 of their exponents
+    std::array<std::vector<double>, dim> y1d; ///< (x_d - c_d[i]) / h in the index box
+    std::uint64_t solves = 0, iterations = 0, evaluations = 0, cheap = 0;
+    unsigned int max_iterations = 0;
+  };
+
+  /// The converged multiplier mu = lambda h, and r and J at it.
+  struct Solution
+  {
+    Tensor<1, dim> mu, r;
+    Tensor<2, dim> J;
+  };
+
+  /// Stops the run: particle p's shape functions fail for the streamed reason @p what.
+  template <typename... T>
+  void fail(const ParticleStore<dim> &particles, const std::size_t p,
+            const T &...what) const
+  {
+    std::ostringstream s;
+    (s << ... << what);
+    AssertThrow(false,
+                ExcShapeFunctionFailure("lme", particles.id[p],
+                                        point_to_string(particles.position[p]), s.str()));
+  }
+
+  /// Set-up of particle p: h, the smallest spacing of its cell, and the n nodes within
+  /// R = radius_over_h h (returns n) into @p nodes, their y_I and a_I into @p scratch.
+  /// Stops the run if x is outside the grid or not strictly inside the nodes' hull.
+  unsigned int set_up(const ParticleStore<dim> &particles, const std::size_t p,
+                      unsigned int *nodes, Scratch &scratch, double &h) const
+  {
+    const Point<dim> &x = particles.position[p];
+    std::array<unsigned int, dim> first, count, cell;
+    if (!grid.locate(x, cell))
+      fail(particles, p, "the particle is outside the grid");
+    h = std::numeric_limits<double>::max();
+    for (unsigned int d = 0; d < dim; ++d)
+      h = std::min(h, grid.spacing(d, cell[d]));
+    const double inv_h = 1 / h;
+    const double R     = radius_over_h * h;
+    const double R2    = radius_over_h * radius_over_h;
+    auto &y1d          = scratch.y1d;
+
+    // Index box of the nodes within [x - R, x + R] in each direction.
+    for (unsigned int d = 0; d < dim; ++d)
+    {
+      const auto &c   = grid.coordinates(d);
+      const double lo = x[d] - R, hi = x[d] + R;
+      unsigned int i_lo = 0, i_hi = c.size() - 1;
+      if (lo > c.front())
+      {
+        grid.locate(lo, d, i_lo);
+        if (c[i_lo] < lo)
+          ++i_lo;
+      }
+      if (hi < c.back())
+        grid.locate(hi, d, i_hi);
+      first[d] = i_lo;
+      count[d] = i_hi + 1 - i_lo;
+      Assert(count[d] <= max_box_1d, ExcInternalError());
+      for (unsigned int k = 0; k < count[d]; ++k)
+        y1d[d][k] = (x[d] - c[i_lo + k]) * inv_h;
+    }
+
+    // Candidates inside the ball, in increasing node index order.
+    unsigned int n = 0;
+    Tensor<1, dim> y_min, y_max, yI;
+    for (unsigned int d = 0; d < dim; ++d)
+      y_min[d] = std::numeric_limits<double>::infinity(), y_max[d] = -y_min[d];
+    const auto keep =
+        [&](const unsigned int node, const Tensor<1, dim> &yn, const double q)
+    {
+      // Cannot happen (max_nodes bounds the ball); guards the connectivity row.
+      if (n == max_nodes)
+        fail(particles, p, "more nodes in the support than max_nodes_per_particle()");
+      nodes[n]     = node;
+      scratch.y[n] = yn;
+      scratch.a[n] = -gamma * q;
+      for (unsigned int d = 0; d < dim; ++d)
+        y_min[d] = std::min(y_min[d], yn[d]), y_max[d] = std::max(y_max[d], yn[d]);
+      ++n;
+    };
+    if constexpr (dim == 2)
+    {
+      for (unsigned int j = 0; j < count[1]; ++j)
+      {
+        const double qj = y1d[1][j] * y1d[1][j];
+        if (qj > R2)
+          continue;
+        const unsigned int row = (first[1] + j) * grid.node_stride(1) + first[0];
+        for (unsigned int i = 0; i < count[0]; ++i)
+        {
+          const double q = y1d[0][i] * y1d[0][i] + qj;
+          if (q <= R2)
+          {
+            yI[0] = y1d[0][i], yI[1] = y1d[1][j];
+            keep(row + i, yI, q);
+          }
+        }
+      }
+    }
+    else
+    {
+      for (unsigned int k = 0; k < count[2]; ++k)
+      {
+        const double qk = y1d[2][k] * y1d[2][k];
+        if (qk > R2)
+          continue;
+        for (unsigned int j = 0; j < count[1]; ++j)
+        {
+          const double qj = y1d[1][j] * y1d[1][j] + qk;
+          if (qj > R2)
+            continue;
+          const unsigned int row = (first[2] + k) * grid.node_stride(2) +
+                                   (first[1] + j) * grid.node_stride(1) + first[0];
+          for (unsigned int i = 0; i < count[0]; ++i)
+          {
+            const double q = y1d[0][i] * y1d[0][i] + qj;
+            if (q <= R2)
+            {
+              yI[0] = y1d[0][i], yI[1] = y1d[1][j], yI[2] = y1d[2][k];
+              keep(row + i, yI, q);
+            }
+          }
+        }
+      }
+    }
+    // The multiplier is finite only if x is strictly inside the hull of its
+    // nodes; on a grid that needs nodes on both sides in every direction.
+    for (unsigned int d = 0; d < dim; ++d)
+      if (!(y_min[d] < 0 && y_max[d] > 0))
+      {
+        fail(particles, p, "the particle is not strictly inside the convex hull of its ",
+             n, " nodes within R = ", R, " (no node on one side along direction ", d,
+             "): it lies on the grid boundary, or the support is too small for its ",
+             "cell (lower 'LME gamma' = ", gamma, " or 'LME tolerance')");
+      }
+    return n;
+  }
+
+  /// Warm start mu = lambda h: the last multiplier extrapolated along the motion since
+  /// that solve. On r(mu, x) = 0 the implicit function theorem gives d mu / d(x / h) =
+  /// 2 gamma I - J^-1, so the first residual is second order in the displacement.
+  static Tensor<1, dim> warm_start(const ParticleStore<dim> &particles,
+                                   const std::size_t p, const double h)
+  {
+    const Tensor<1, dim> dx = particles.position[p] - particles.lme_position[p];
+    return (particles.lme_lambda[p] + particles.lme_lambda_rate[p] * dx) * h;
+  }
+
+  /// Minimises log Z over mu from the warm start @p mu (see the class documentation),
+  /// leaving the N_I in @p N. Stops the run if it does not converge to a regular J.
+  Solution solve(const ParticleStore<dim> &particles, const std::size_t p,
+                 const unsigned int n, Tensor<1, dim> mu, double *N,
+                 Scratch &scratch) const
+  {
+    Tensor<1, dim> r, r_trial, mu_trial;
+    Tensor<2, dim> J, J_trial;
+    double F, F_trial;
+    unsigned int it = 0, cheap = 0; // all steps; those without exponentials
+    const auto report = [&](const char *what)
+    {
+      fail(particles, p, what, " after ", it, " Newton iterations (gamma = ", gamma, ", ",
+           n, " nodes): |r|/h = ", r.norm(), " (tolerance ", newton_tol,
+           "), |lambda| h = ", mu.norm());
+    };
+    // J is a covariance of the y_I; it loses rank only if the weights
+    // concentrate on a lower-dimensional set of nodes.
+    const auto singular = [](const Tensor<2, dim> &J)
+    {
+      const double scale = trace(J) / dim;
+      return !(determinant(J) > 1e-12 * std::pow(scale, dim));
+    };
+    const Tensor<1, dim> *y = scratch.y.data();
+    evaluate(scratch.a.data(), y, n, mu, N, F, r, J);
+    ++scratch.evaluations;
+    while (!(r.norm() < newton_tol))
+    {
+      if (it == max_iterations)
+        report("not converged");
+      if (!std::isfinite(F) || singular(J))
+        report("singular Hessian");
+      // Newton step s = -J^-1 r plus, where it is a small correction, Chebyshev's
+      // third-order term -J^-1 T(s, s) / 2 with T = dJ/dmu the third cumulant
+      // sum_I N_I z_I (x) z_I (x) z_I, z_I = y_I - r. It costs one pass without
+      // exponentials and turns the quadratic convergence cubic: a warm start then
+      // needs 1-2 steps instead of 2-3, and fewer particles near grid lines at
+      // large gamma (small J, so lambda moves a lot with x) need a fourth.
+      const Tensor<2, dim> J_inv_step = invert(J);
+      Tensor<1, dim> step             = -(J_inv_step * r);
+      // Near the solution (the common case after the warm start) a polynomial step:
+      // its |t| <= |step| (R / h + |r|) is below cheap_step_limit.
+      if (step.norm() * (radius_over_h + r.norm()) < cheap_step_limit)
+      {
+        polynomial_step(y, n, step, N, F, r, J);
+        mu += step;
+        ++it, ++cheap;
+        continue;
+      }
+      {
+        Tensor<1, dim> w;
+        for (unsigned int I = 0; I < n; ++I)
+        {
+          const Tensor<1, dim> z = y[I] - r;
+          const double zs        = z * step;
+          w += (N[I] * zs * zs) * z;
+        }
+        const Tensor<1, dim> c = -0.5 * (J_inv_step * w);
+        // Outside the local regime keep the plain Newton direction.
+        if (c.norm() < 0.5 * step.norm() && r * (step + c) < 0.5 * (r * step))
+          step += c;
+      }
+      const double slope = r * step; // < 0: a descent direction
+      // Line search for the Wolfe conditions along the Newton direction: enough
+      // decrease of log Z, and the directional derivative r . step shrunk to
+      // c2 |slope|. Sufficient decrease alone accepts steps that jump far past
+      // the minimum along the line, which is what costs iterations from a cold
+      // start at large gamma or near the boundary. phi(t) = log Z(mu + t step) is
+      // convex, so the sign of phi' brackets its minimum and a secant on phi'
+      // refines the step. noise: the rounding of log Z, below which a decrease
+      // cannot be measured.
+      const double noise = 32 * std::numeric_limits<double>::epsilon() *
+                           (1 + std::abs(F) + mu.norm() * radius_over_h);
+      double t = 1, t_lo = 0, t_hi = std::numeric_limits<double>::infinity();
+      double d_lo = slope, d_hi = 0;
+      for (unsigned int trial = 0;; ++trial)
+      {
+        mu_trial = mu + t * step;
+        evaluate(scratch.a.data(), y, n, mu_trial, N, F_trial, r_trial, J_trial);
+        ++scratch.evaluations;
+        const double d_phi  = r_trial * step;
+        const bool decrease = F_trial <= F + c1 * t * slope + noise;
+        if ((decrease && std::abs(d_phi) <= -c2 * slope) || r_trial.norm() < newton_tol)
+          break;
+        if (trial == 60)
+          report("line search failed");
+        if (!decrease || d_phi > 0)
+          t_hi = t, d_hi = d_phi;
+        else
+          t_lo = t, d_lo = d_phi;
+        if (!std::isfinite(t_hi))
+          t *= 4;
+        else
+        {
+          const double width = t_hi - t_lo;
+          const double secant =
+              (d_hi > d_lo) ? t_lo - d_lo * width / (d_hi - d_lo) : t_lo + 0.5 * width;
+          t = std::clamp(secant, t_lo + 0.01 * width, t_hi - 0.01 * width);
+        }
+      }
+      mu = mu_trial, r = r_trial, J = J_trial, F = F_trial;
+      ++it;
+    }
+    if (singular(J))
+      report("singular Hessian");
+    ++scratch.solves;
+    scratch.iterations += it - cheap;
+    scratch.cheap += cheap;
+    scratch.max_iterations = std::max(scratch.max_iterations, it - cheap);
+    return {mu, r, J};
+  }
+
+  /// grad N_I from the Hessian J, and the state kept for the next warm start. Arroyo &
+  /// Ortiz's grad N_I = N_I (grad f_I - sum_J N_J grad f_J) is -N_I J^-1 (y_I - r) / h;
+  /// the usual form drops r (zero at the exact multiplier), leaving sum grad N_I =
+  /// -J^-1 r / h, large where J is small (near a node at large gamma). Keeping r, both
+  /// gradient consistency conditions hold to rounding whatever the Newton residual.
+  void gradients(ParticleStore<dim> &particles, const std::size_t p, const unsigned int n,
+                 const double h, const Scratch &scratch, const double *N,
+                 const Solution &solution, Tensor<1, dim> *gradN) const
+  {
+    const double inv_h         = 1 / h;
+    const Tensor<2, dim> unit  = unit_symmetric_tensor<dim>();
+    const Tensor<2, dim> J_inv = invert(solution.J);
+    for (unsigned int I = 0; I < n; ++I)
+      gradN[I] = (-N[I] * inv_h) * (J_inv * (scratch.y[I] - solution.r));
+    particles.lme_lambda[p]      = solution.mu * inv_h;
+    particles.lme_position[p]    = particles.position[p];
+    particles.lme_lambda_rate[p] = (2 * gamma * unit - J_inv) * (inv_h * inv_h);
+  }
+
   /**
    * Upper bound of the nodes within distance R of any point, on a product grid whose
    * spacing along d is at least h[d]. The planes (rows) of nodes sorted by distance
@@ -530,6 +574,8 @@ private:
   const BackgroundGrid<dim> &grid;
   const double gamma;
   const double newton_tol;
+  /// Largest |t| of a polynomial_step(): its relative error t^4 / 24 is below newton_tol.
+  const double cheap_step_limit;
   const unsigned int max_iterations;
   const double radius_over_h; ///< support radius R / h
   double R_max = 0;           ///< largest support radius on this grid
