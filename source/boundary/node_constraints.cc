@@ -1,4 +1,5 @@
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/base/parameters.h>
 #include <lme_mpm/boundary/node_constraints.h>
 
 #include <algorithm>
@@ -6,20 +7,35 @@
 
 namespace lme_mpm
 {
+namespace
+{
+/// The entries of one "Constraint N", listed once for declaring and reading.
+struct ConstraintEntries
+{
+  std::string name, boundary_ids, box, components;
+
+  void entries(EntryList &list)
+  {
+    list.add("Name", name, "support", Patterns::Anything(),
+             "Name of the node set; history.csv reports force_<name>_x and "
+             "displacement_<name>_x for it. Letters, digits and '_' only.");
+    list.add("Boundary ids", boundary_ids, "", Patterns::List(Patterns::Integer(0, 5)),
+             "deal.II boundary ids of the grid faces whose nodes are in the set "
+             "(0: x-min, 1: x-max, 2: y-min, 3: y-max, 4: z-min, 5: z-max).");
+    list.add("Box", box, "", Patterns::Anything(),
+             "Optional box 'x0, y0[, z0], x1, y1[, z1]': grid nodes inside it "
+             "join the set.");
+    list.add("Components", components, "x", Patterns::MultipleSelection("x|y|z"),
+             "Velocity components that are prescribed.");
+  }
+};
+} // namespace
+
 template <int dim>
 void NodeConstraint<dim>::declare_parameters(ParameterHandler &prm)
 {
-  prm.declare_entry("Name", "support", Patterns::Anything(),
-                    "Name of the node set; history.csv reports force_<name>_x and "
-                    "displacement_<name>_x for it. Letters, digits and '_' only.");
-  prm.declare_entry("Boundary ids", "", Patterns::List(Patterns::Integer(0, 5)),
-                    "deal.II boundary ids of the grid faces whose nodes are in the set "
-                    "(0: x-min, 1: x-max, 2: y-min, 3: y-max, 4: z-min, 5: z-max).");
-  prm.declare_entry("Box", "", Patterns::Anything(),
-                    "Optional box 'x0, y0[, z0], x1, y1[, z1]': grid nodes inside it "
-                    "join the set.");
-  prm.declare_entry("Components", "x", Patterns::MultipleSelection("x|y|z"),
-                    "Velocity components that are prescribed.");
+  EntryList list(prm, EntryList::Mode::declare);
+  ConstraintEntries().entries(list);
   prm.enter_subsection("Velocity");
   Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
   prm.leave_subsection();
@@ -30,13 +46,16 @@ void NodeConstraint<dim>::parse_parameters(ParameterHandler &prm,
                                            const BackgroundGrid<dim> &grid,
                                            const std::string &prefix)
 {
-  set_name = input::trim(prm.get("Name"));
+  ConstraintEntries in;
+  EntryList list(prm, EntryList::Mode::parse);
+  in.entries(list);
+  set_name = input::trim(in.name);
   AssertThrow(!set_name.empty() &&
                   std::all_of(set_name.begin(), set_name.end(),
                               [](char c) { return std::isalnum(c) || c == '_'; }),
               ExcBadInput(prefix + "/Name",
                           "'" + set_name + "' must be non-empty letters, digits or '_'"));
-  for (const auto &id : input::split(prm.get("Boundary ids"), ','))
+  for (const auto &id : input::split(in.boundary_ids, ','))
   {
     const int b = std::stoi(id);
     AssertThrow(b < 2 * dim,
@@ -46,7 +65,7 @@ void NodeConstraint<dim>::parse_parameters(ParameterHandler &prm,
     const auto nodes = grid.nodes_on_boundary(b);
     node_list.insert(node_list.end(), nodes.begin(), nodes.end());
   }
-  const auto box = input::parse_doubles(prm.get("Box"), prefix + "/Box");
+  const auto box = input::parse_doubles(in.box, prefix + "/Box");
   if (!box.empty())
   {
     AssertThrow(box.size() == 2 * dim,
@@ -66,7 +85,7 @@ void NodeConstraint<dim>::parse_parameters(ParameterHandler &prm,
                               "' is empty: give boundary ids or a box holding grid "
                               "nodes"));
 
-  const std::string comps = prm.get("Components");
+  const std::string &comps = in.components;
   for (unsigned int d = 0; d < dim; ++d)
     component_mask[d] = comps.find("xyz"[d]) != std::string::npos;
   AssertThrow(dim == 3 || comps.find('z') == std::string::npos,

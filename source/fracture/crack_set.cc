@@ -1,4 +1,5 @@
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/base/parameters.h>
 #include <lme_mpm/fracture/crack_set.h>
 
 #include <algorithm>
@@ -26,37 +27,57 @@ double distance_to_segment(const Point<dim> &x, const Point<dim> &a, const Point
 }
 } // namespace
 
+namespace
+{
+/// The "Cracks" entries, listed once for declaring and reading.
+struct CrackEntries
+{
+  std::string polylines;
+  bool grow = true, contact = true;
+
+  void entries(EntryList &list)
+  {
+    list.enter("Cracks");
+    list.add(
+        "Polylines", polylines, "", Patterns::Anything(),
+        "Explicit cracks (2D): each a polyline 'x0, y0, x1, y1, ...' (m), several "
+        "separated by ';'. Grid nodes near a crack carry a second velocity field, so the "
+        "crack faces move independently even where a node's support spans both (CRAMP). "
+        "Put a crack on the centre line of a notch that its support would bridge, or "
+        "through intact particles for a sharp crack; one that opens on a free edge "
+        "should start a support radius outside it, so that no particle-node line "
+        "passes round its mouth. Empty: none.");
+    list.add("Grow with erosion", grow, "true", Patterns::Bool(),
+             "Extend each crack tip along the failed particles ahead of it, so "
+             "that a crack grown by eigenerosion or eigensoftening separates the "
+             "velocity field as the initial crack does.");
+    list.add("Face contact", contact, "true", Patterns::Bool(),
+             "Keep crack faces that move towards each other from passing "
+             "through one another (frictionless contact between the two fields "
+             "of a node).");
+    list.leave();
+  }
+};
+} // namespace
+
 template <int dim>
 void CrackSet<dim>::declare_parameters(ParameterHandler &prm)
 {
-  prm.enter_subsection("Cracks");
-  prm.declare_entry(
-      "Polylines", "", Patterns::Anything(),
-      "Explicit cracks (2D): each a polyline 'x0, y0, x1, y1, ...' (m), several "
-      "separated by ';'. Grid nodes near a crack carry a second velocity field, so the "
-      "crack faces move independently even where a node's support spans both (CRAMP). "
-      "Put a crack on the centre line of a notch that its support would bridge, or "
-      "through intact particles for a sharp crack; one that opens on a free edge "
-      "should start a support radius outside it, so that no particle-node line "
-      "passes round its mouth. Empty: none.");
-  prm.declare_entry("Grow with erosion", "true", Patterns::Bool(),
-                    "Extend each crack tip along the failed particles ahead of it, so "
-                    "that a crack grown by eigenerosion or eigensoftening separates the "
-                    "velocity field as the initial crack does.");
-  prm.declare_entry("Face contact", "true", Patterns::Bool(),
-                    "Keep crack faces that move towards each other from passing "
-                    "through one another (frictionless contact between the two fields "
-                    "of a node).");
-  prm.leave_subsection();
+  EntryList list(prm, EntryList::Mode::declare);
+  CrackEntries().entries(list);
 }
 
 template <int dim>
 void CrackSet<dim>::parse_parameters(ParameterHandler &prm)
 {
-  prm.enter_subsection("Cracks");
+  CrackEntries in;
+  EntryList list(prm, EntryList::Mode::parse);
+  in.entries(list);
+  growing                 = in.grow;
+  contact                 = in.contact;
   const std::string entry = "Cracks/Polylines";
   lines.clear();
-  for (const auto &text : input::split(prm.get("Polylines"), ';'))
+  for (const auto &text : input::split(in.polylines, ';'))
   {
     AssertThrow(dim == 2,
                 ExcBadInput(entry, "explicit cracks are available in 2D only (got '" +
@@ -79,9 +100,6 @@ void CrackSet<dim>::parse_parameters(ParameterHandler &prm)
     }
     lines.push_back(std::move(line));
   }
-  growing = prm.get_bool("Grow with erosion");
-  contact = prm.get_bool("Face contact");
-  prm.leave_subsection();
 }
 
 template <int dim>

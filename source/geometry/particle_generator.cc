@@ -2,6 +2,7 @@
 #include <deal.II/base/quadrature_lib.h>
 
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/base/parameters.h>
 #include <lme_mpm/geometry/geometry.h>
 #include <lme_mpm/geometry/particle_generator.h>
 
@@ -29,31 +30,49 @@ void for_each_index(const std::array<unsigned int, dim> &lo,
       break;
   }
 }
+
+/// The entries of one "Body N", listed once for declaring and reading; the
+/// initial velocity is a ParsedFunction subsection beside them.
+template <int dim>
+struct BodyEntries
+{
+  unsigned int material = 1, particles_per_cell = 2;
+  std::string shape, holes, placement;
+
+  void entries(EntryList &list)
+  {
+    list.add("Material", material, "1", Patterns::Integer(1),
+             "Number N of the 'Material N' the body is made of.");
+    list.add("Shape", shape,
+             dim == 2 ? "rectangle(0, 0, 1, 1)" : "rectangle(0, 0, 0, 1, 1, 1)",
+             Patterns::Anything(),
+             "Region the body fills: " +
+                 GeometryRegistry<dim>::instance().documentation());
+    list.add("Holes", holes, "", Patterns::Anything(),
+             "Regions removed from the shape (notches, holes), separated by "
+             "';', in the same form as 'Shape'.");
+    list.add("Particle placement", placement, "gauss",
+             Patterns::Selection("gauss|uniform"),
+             "'gauss': particles at the Gauss points of each cell (the paper's "
+             "choice); 'uniform': at the centres of equal sub-cells, so that "
+             "particle boxes tile the body (what uGIMP assumes).");
+    list.add("Particles per cell direction", particles_per_cell, "2",
+             Patterns::Integer(1, 8),
+             "Particles at the Gauss points of each background cell, this "
+             "many per direction.");
+  }
+};
 } // namespace
 
 template <int dim>
 void ParticleGenerator<dim>::declare_parameters(ParameterHandler &prm,
                                                 const unsigned int n_bodies)
 {
+  EntryList list(prm, EntryList::Mode::declare);
   for (unsigned int b = 0; b < n_bodies; ++b)
   {
     prm.enter_subsection(input::subsection_name("Body", b));
-    prm.declare_entry("Material", "1", Patterns::Integer(1),
-                      "Number N of the 'Material N' the body is made of.");
-    prm.declare_entry(
-        "Shape", dim == 2 ? "rectangle(0, 0, 1, 1)" : "rectangle(0, 0, 0, 1, 1, 1)",
-        Patterns::Anything(),
-        "Region the body fills: " + GeometryRegistry<dim>::instance().documentation());
-    prm.declare_entry("Holes", "", Patterns::Anything(),
-                      "Regions removed from the shape (notches, holes), separated by "
-                      "';', in the same form as 'Shape'.");
-    prm.declare_entry("Particle placement", "gauss", Patterns::Selection("gauss|uniform"),
-                      "'gauss': particles at the Gauss points of each cell (the paper's "
-                      "choice); 'uniform': at the centres of equal sub-cells, so that "
-                      "particle boxes tile the body (what uGIMP assumes).");
-    prm.declare_entry("Particles per cell direction", "2", Patterns::Integer(1, 8),
-                      "Particles at the Gauss points of each background cell, this "
-                      "many per direction.");
+    BodyEntries<dim>().entries(list);
     prm.enter_subsection("Initial velocity");
     Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
     prm.leave_subsection();
@@ -76,17 +95,20 @@ ParticleGenerator<dim>::fill(ParameterHandler &prm, const unsigned int n_bodies,
     BodyPlacement body;
     body.section = input::subsection_name("Body", b);
     prm.enter_subsection(body.section);
-    body.material = prm.get_integer("Material") - 1;
+    BodyEntries<dim> in;
+    EntryList list(prm, EntryList::Mode::parse);
+    in.entries(list);
+    body.material = in.material - 1;
     AssertThrow(body.material < densities.size(),
                 ExcBadInput(body.section + "/Material",
                             "must be between 1 and Problem/Number of materials = " +
                                 std::to_string(densities.size())));
-    const auto shape = geometries.create(prm.get("Shape"), body.section + "/Shape");
+    const auto shape = geometries.create(in.shape, body.section + "/Shape");
     std::vector<std::unique_ptr<Geometry<dim>>> holes;
-    for (const auto &h : input::split(prm.get("Holes"), ';'))
+    for (const auto &h : input::split(in.holes, ';'))
       holes.push_back(geometries.create(h, body.section + "/Holes"));
-    body.particles_per_cell      = prm.get_integer("Particles per cell direction");
-    const bool uniform_placement = prm.get("Particle placement") == "uniform";
+    body.particles_per_cell      = in.particles_per_cell;
+    const bool uniform_placement = in.placement == "uniform";
     Functions::ParsedFunction<dim> velocity(dim);
     input::parse_function(prm, "Initial velocity", velocity,
                           body.section + "/Initial velocity");

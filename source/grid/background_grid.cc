@@ -3,6 +3,7 @@
 #include <deal.II/fe/fe_q.h>
 
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/base/parameters.h>
 #include <lme_mpm/grid/background_grid.h>
 
 #include <algorithm>
@@ -39,36 +40,52 @@ std::vector<double> parse_steps(const std::string &text, const std::string &entr
   }
   return steps;
 }
+
+/// The "Grid" entries, listed once for declaring and reading.
+template <int dim>
+struct GridEntries
+{
+  std::string lower, upper;
+  double cell_size = 0.1;
+  std::array<std::string, 3> steps;
+
+  void entries(EntryList &list)
+  {
+    list.enter("Grid");
+    list.add("Lower corner", lower, dim == 2 ? "0, 0" : "0, 0, 0", Patterns::Anything(),
+             "Lower corner of the background grid (m).");
+    list.add("Upper corner", upper, dim == 2 ? "1, 1" : "1, 1, 1", Patterns::Anything(),
+             "Upper corner of the background grid (m).");
+    list.add("Cell size", cell_size, "0.1", Patterns::Double(0),
+             "Uniform cell size h (m); each extent must be a whole number of "
+             "cells. Ignored in a direction that has its own step sizes.");
+    for (unsigned int d = 0; d < 3; ++d)
+      list.add(std::string("Step sizes ") + axis_name[d], steps[d], "",
+               Patterns::Anything(),
+               std::string("Graded spacing along ") + axis_name[d] +
+                   ": comma-separated 'count*size' or 'size' items from the lower "
+                   "corner (for example '10*0.01, 5*0.02'). Empty: uniform.");
+    list.leave();
+  }
+};
 } // namespace
 
 template <int dim>
 void BackgroundGrid<dim>::declare_parameters(ParameterHandler &prm)
 {
-  prm.enter_subsection("Grid");
-  prm.declare_entry("Lower corner", dim == 2 ? "0, 0" : "0, 0, 0", Patterns::Anything(),
-                    "Lower corner of the background grid (m).");
-  prm.declare_entry("Upper corner", dim == 2 ? "1, 1" : "1, 1, 1", Patterns::Anything(),
-                    "Upper corner of the background grid (m).");
-  prm.declare_entry("Cell size", "0.1", Patterns::Double(0),
-                    "Uniform cell size h (m); each extent must be a whole number of "
-                    "cells. Ignored in a direction that has its own step sizes.");
-  for (unsigned int d = 0; d < 3; ++d)
-    prm.declare_entry(std::string("Step sizes ") + axis_name[d], "", Patterns::Anything(),
-                      std::string("Graded spacing along ") + axis_name[d] +
-                          ": comma-separated 'count*size' or 'size' items from the lower "
-                          "corner (for example '10*0.01, 5*0.02'). Empty: uniform.");
-  prm.leave_subsection();
+  EntryList list(prm, EntryList::Mode::declare);
+  GridEntries<dim>().entries(list);
 }
 
 template <int dim>
 void BackgroundGrid<dim>::parse_parameters(ParameterHandler &prm)
 {
-  prm.enter_subsection("Grid");
-  const Point<dim> lo =
-      input::parse_point<dim>(prm.get("Lower corner"), "Grid/Lower corner");
-  const Point<dim> hi =
-      input::parse_point<dim>(prm.get("Upper corner"), "Grid/Upper corner");
-  const double h = prm.get_double("Cell size");
+  GridEntries<dim> in;
+  EntryList list(prm, EntryList::Mode::parse);
+  in.entries(list);
+  const Point<dim> lo = input::parse_point<dim>(in.lower, "Grid/Lower corner");
+  const Point<dim> hi = input::parse_point<dim>(in.upper, "Grid/Upper corner");
+  const double h      = in.cell_size;
   std::array<std::vector<double>, dim> steps;
   for (unsigned int d = 0; d < dim; ++d)
   {
@@ -76,7 +93,7 @@ void BackgroundGrid<dim>::parse_parameters(ParameterHandler &prm)
     AssertThrow(hi[d] > lo[d],
                 ExcBadInput("Grid/Upper corner", "must exceed the lower corner in every "
                                                  "direction"));
-    steps[d] = parse_steps(prm.get(std::string("Step sizes ") + axis_name[d]), entry);
+    steps[d]      = parse_steps(in.steps[d], entry);
     double extent = 0;
     for (const double s : steps[d])
       extent += s;
@@ -95,7 +112,6 @@ void BackgroundGrid<dim>::parse_parameters(ParameterHandler &prm)
       AssertThrow(std::abs(extent - (hi[d] - lo[d])) < 1e-9 * (hi[d] - lo[d]),
                   ExcBadInput(entry, "the steps do not add up to the grid extent"));
   }
-  prm.leave_subsection();
   reinit(lo, steps);
 }
 

@@ -1,22 +1,40 @@
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/base/parameters.h>
 #include <lme_mpm/materials/material_set.h>
 
 #include <algorithm>
 
 namespace lme_mpm
 {
+namespace
+{
+/// The entries every "Material N" has, listed once for declaring and reading.
+template <int dim>
+struct MaterialEntries
+{
+  std::string model;
+  double density = 1000;
+
+  void entries(EntryList &list)
+  {
+    const auto &registry = MaterialRegistry<dim>::instance();
+    list.add("Model", model, "linear elastic", Patterns::Selection(registry.pattern()),
+             "Constitutive model. " + registry.documentation());
+    list.add("Density", density, "1000", Patterns::Double(0), "Density (kg/m^3), > 0.");
+  }
+};
+} // namespace
+
 template <int dim>
 void MaterialSet<dim>::declare_parameters(ParameterHandler &prm,
                                           const unsigned int n_materials)
 {
-  const auto &registry = MaterialRegistry<dim>::instance();
+  EntryList list(prm, EntryList::Mode::declare);
   for (unsigned int m = 0; m < n_materials; ++m)
   {
     prm.enter_subsection(input::subsection_name("Material", m));
-    prm.declare_entry("Model", "linear elastic", Patterns::Selection(registry.pattern()),
-                      "Constitutive model. " + registry.documentation());
-    prm.declare_entry("Density", "1000", Patterns::Double(0), "Density (kg/m^3), > 0.");
-    registry.declare_all(prm);
+    MaterialEntries<dim>().entries(list);
+    MaterialRegistry<dim>::instance().declare_all(prm);
     prm.leave_subsection();
   }
 }
@@ -30,16 +48,18 @@ void MaterialSet<dim>::parse_parameters(ParameterHandler &prm,
   context.dim = dim;
   context.plane =
       plane_stress ? PlaneAssumption::plane_stress : PlaneAssumption::plane_strain;
+  EntryList list(prm, EntryList::Mode::parse);
   models.clear();
   for (unsigned int m = 0; m < n_materials; ++m)
   {
     const std::string section = input::subsection_name("Material", m);
     prm.enter_subsection(section);
-    const std::string model = prm.get("Model");
-    context.density         = prm.get_double("Density");
-    context.section         = section + "/" + model;
+    MaterialEntries<dim> in;
+    in.entries(list);
+    context.density = in.density;
+    context.section = section + "/" + in.model;
     input::require_range(context.density, 0, 1e300, true, section + "/Density");
-    models.push_back(MaterialRegistry<dim>::instance().create(model, prm, context));
+    models.push_back(MaterialRegistry<dim>::instance().create(in.model, prm, context));
     prm.leave_subsection();
   }
 }

@@ -1,4 +1,5 @@
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/base/parameters.h>
 #include <lme_mpm/output/exact_solution.h>
 
 #include <algorithm>
@@ -6,25 +7,41 @@
 
 namespace lme_mpm
 {
+namespace
+{
+/// The switches of "Verification", listed once for declaring and reading; the
+/// exact fields are ParsedFunction subsections beside them.
+struct VerificationEntries
+{
+  bool compare = false, compare_stress = false;
+
+  void entries(EntryList &list)
+  {
+    list.add("Compare with exact solution", compare, "false", Patterns::Bool(),
+             "Report error_displacement_l2 and error_velocity_l2 against the "
+             "exact fields below, functions of the reference position and t.");
+    list.add("Compare stress", compare_stress, "false", Patterns::Bool(),
+             "Also report error_stress_l2 against 'Exact stress' (with 'Compare "
+             "with exact solution').");
+  }
+};
+
+const char *field_names[3] = {"Exact displacement", "Exact velocity", "Exact stress"};
+} // namespace
+
 template <int dim>
 void ExactSolution<dim>::declare_parameters(ParameterHandler &prm)
 {
   prm.enter_subsection("Verification");
-  prm.declare_entry("Compare with exact solution", "false", Patterns::Bool(),
-                    "Report error_displacement_l2 and error_velocity_l2 against the "
-                    "exact fields below, functions of the reference position and t.");
-  for (const char *s : {"Exact displacement", "Exact velocity"})
+  EntryList list(prm, EntryList::Mode::declare);
+  VerificationEntries().entries(list);
+  for (unsigned int f = 0; f < 3; ++f)
   {
-    prm.enter_subsection(s);
-    Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
+    prm.enter_subsection(field_names[f]);
+    Functions::ParsedFunction<dim>::declare_parameters(prm,
+                                                       f < 2 ? dim : dim * (dim + 1) / 2);
     prm.leave_subsection();
   }
-  prm.declare_entry("Compare stress", "false", Patterns::Bool(),
-                    "Also report error_stress_l2 against 'Exact stress' (with 'Compare "
-                    "with exact solution').");
-  prm.enter_subsection("Exact stress");
-  Functions::ParsedFunction<dim>::declare_parameters(prm, dim * (dim + 1) / 2);
-  prm.leave_subsection();
   prm.leave_subsection();
 }
 
@@ -32,19 +49,22 @@ template <int dim>
 void ExactSolution<dim>::parse_parameters(ParameterHandler &prm)
 {
   prm.enter_subsection("Verification");
-  if (prm.get_bool("Compare with exact solution"))
+  VerificationEntries in;
+  EntryList list(prm, EntryList::Mode::parse);
+  in.entries(list);
+  const auto parse = [&](const unsigned int f, const unsigned int n_components)
   {
-    displacement = std::make_unique<Functions::ParsedFunction<dim>>(dim);
-    velocity     = std::make_unique<Functions::ParsedFunction<dim>>(dim);
-    input::parse_function(prm, "Exact displacement", *displacement,
-                          "Verification/Exact displacement");
-    input::parse_function(prm, "Exact velocity", *velocity,
-                          "Verification/Exact velocity");
-    if (prm.get_bool("Compare stress"))
-    {
-      stress = std::make_unique<Functions::ParsedFunction<dim>>(dim * (dim + 1) / 2);
-      input::parse_function(prm, "Exact stress", *stress, "Verification/Exact stress");
-    }
+    auto function = std::make_unique<Functions::ParsedFunction<dim>>(n_components);
+    input::parse_function(prm, field_names[f], *function,
+                          std::string("Verification/") + field_names[f]);
+    return function;
+  };
+  if (in.compare)
+  {
+    displacement = parse(0, dim);
+    velocity     = parse(1, dim);
+    if (in.compare_stress)
+      stress = parse(2, dim * (dim + 1) / 2);
   }
   prm.leave_subsection();
 }

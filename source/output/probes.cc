@@ -1,45 +1,69 @@
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/base/parameters.h>
 #include <lme_mpm/output/probes.h>
 
 namespace lme_mpm
 {
+namespace
+{
+/// The entries of one "Output/Probe N", listed once for declaring and reading.
+template <int dim>
+struct ProbeEntries
+{
+  std::string name, point;
+  double radius = 0.01;
+
+  void entries(EntryList &list)
+  {
+    list.add("Name", name, "probe", Patterns::Anything(),
+             "history.csv reports probe_<name>_sxx, ... .");
+    list.add("Point", point, dim == 2 ? "0, 0" : "0, 0, 0", Patterns::Anything(),
+             "Centre of the probe (m).");
+    list.add("Radius", radius, "0.01", Patterns::Double(0),
+             "Particles within this distance are averaged (m), > 0.");
+  }
+};
+
+/// Runs the entries of @p n probes, each in its subsection of "Output".
+template <int dim>
+void probe_entries(EntryList &list, std::vector<ProbeEntries<dim>> &probes)
+{
+  list.enter("Output");
+  for (unsigned int p = 0; p < probes.size(); ++p)
+  {
+    list.enter(input::subsection_name("Probe", p));
+    probes[p].entries(list);
+    list.leave();
+  }
+  list.leave();
+}
+} // namespace
+
 template <int dim>
 void Probes<dim>::declare_parameters(ParameterHandler &prm, const unsigned int n_probes)
 {
-  prm.enter_subsection("Output");
-  for (unsigned int p = 0; p < n_probes; ++p)
-  {
-    prm.enter_subsection(input::subsection_name("Probe", p));
-    prm.declare_entry("Name", "probe", Patterns::Anything(),
-                      "history.csv reports probe_<name>_sxx, ... .");
-    prm.declare_entry("Point", dim == 2 ? "0, 0" : "0, 0, 0", Patterns::Anything(),
-                      "Centre of the probe (m).");
-    prm.declare_entry("Radius", "0.01", Patterns::Double(0),
-                      "Particles within this distance are averaged (m), > 0.");
-    prm.leave_subsection();
-  }
-  prm.leave_subsection();
+  std::vector<ProbeEntries<dim>> in(n_probes);
+  EntryList list(prm, EntryList::Mode::declare);
+  probe_entries(list, in);
 }
 
 template <int dim>
 void Probes<dim>::parse_parameters(ParameterHandler &prm, const unsigned int n_probes)
 {
+  std::vector<ProbeEntries<dim>> in(n_probes);
+  EntryList list(prm, EntryList::Mode::parse);
+  probe_entries(list, in);
   probes.clear();
-  prm.enter_subsection("Output");
   for (unsigned int p = 0; p < n_probes; ++p)
   {
-    const std::string section = input::subsection_name("Probe", p);
-    prm.enter_subsection(section);
+    const std::string entry = "Output/" + input::subsection_name("Probe", p);
     Probe<dim> probe;
-    probe.name = input::trim(prm.get("Name"));
-    probe.point =
-        input::parse_point<dim>(prm.get("Point"), "Output/" + section + "/Point");
-    probe.radius = prm.get_double("Radius");
-    input::require_range(probe.radius, 0, 1e300, true, "Output/" + section + "/Radius");
+    probe.name   = input::trim(in[p].name);
+    probe.point  = input::parse_point<dim>(in[p].point, entry + "/Point");
+    probe.radius = in[p].radius;
+    input::require_range(probe.radius, 0, 1e300, true, entry + "/Radius");
     probes.push_back(probe);
-    prm.leave_subsection();
   }
-  prm.leave_subsection();
 }
 
 template <int dim>
