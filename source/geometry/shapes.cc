@@ -174,17 +174,16 @@ std::unique_ptr<Geometry<dim>>
 GeometryRegistry<dim>::create(const std::string &text, const std::string &entry) const
 {
   const input::Call call = input::parse_call(text, entry);
-  const auto it          = entries.find(call.name);
-  AssertThrow(
-      it != entries.end(),
-      ExcBadInput(entry, "unknown shape '" + call.name + "'; known: " + documentation()));
-  AssertThrow(call.args.size() == it->second.n_arguments,
+  const Entry *shape     = this->find(call.name);
+  AssertThrow(shape != nullptr, ExcBadInput(entry, "unknown shape '" + call.name +
+                                                       "'; known: " + documentation()));
+  AssertThrow(call.args.size() == shape->n_arguments,
               ExcBadInput(entry, "'" + call.name + "' takes " +
-                                     std::to_string(it->second.n_arguments) +
-                                     " numbers: " + it->second.description));
+                                     std::to_string(shape->n_arguments) +
+                                     " numbers: " + shape->description));
   try
   {
-    return it->second.create(call.args);
+    return shape->create(call.args);
   }
   catch (const std::invalid_argument &e)
   {
@@ -197,7 +196,7 @@ template <int dim>
 std::string GeometryRegistry<dim>::documentation() const
 {
   std::string s;
-  for (const auto &e : entries)
+  for (const auto &e : this->all())
     s += (s.empty() ? "" : "; ") + e.second.description;
   return s;
 }

@@ -58,23 +58,15 @@ using FractureModelRegistry = Registry<FractureModel<dim>, FractureContext>;
 void declare_fracture_parameters(dealii::ParameterHandler &prm);
 } // namespace lme_mpm
 
-/// Registers fracture model class template CLASS (dim-templated) as NAME.
+/**
+ * Registers fracture model class template CLASS (templated on dim, constructed from
+ * (ParameterHandler &, const FractureContext &)) under NAME for dim = 2 and 3. A
+ * static declare_parameters(ParameterHandler &), if it has one, declares its entries
+ * straight into "Material N/Fracture".
+ */
 #define LME_MPM_REGISTER_FRACTURE_MODEL(CLASS, NAME, DESCRIPTION)                        \
-  namespace                                                                              \
-  {                                                                                      \
-  template <int dim>                                                                     \
-  bool register_fracture_##CLASS()                                                       \
-  {                                                                                      \
-    return ::lme_mpm::FractureModelRegistry<dim>::instance().add(                        \
-        NAME,                                                                            \
-        {DESCRIPTION, nullptr,                                                           \
-         [](dealii::ParameterHandler &prm, const ::lme_mpm::FractureContext &ctx) {      \
-           return std::unique_ptr<::lme_mpm::FractureModel<dim>>(                        \
-               new CLASS<dim>(prm, ctx));                                                \
-         }});                                                                            \
-  }                                                                                      \
-  const bool registered_fracture_2d_##CLASS = register_fracture_##CLASS<2>();            \
-  const bool registered_fracture_3d_##CLASS = register_fracture_##CLASS<3>();            \
-  }
+  LME_MPM_REGISTER_PLUGIN_FOR_DIMS(::lme_mpm::FractureModelRegistry, fracture_model,     \
+                                   CLASS, NAME, DESCRIPTION,                             \
+                                   ::lme_mpm::PluginEntries::caller_subsection)
 
 #endif

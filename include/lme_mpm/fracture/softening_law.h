@@ -40,13 +40,7 @@ using SofteningLawRegistry = Registry<SofteningLaw, SofteningContext>;
 
 /// Registers softening law CLASS (constructed from const SofteningContext &) as NAME.
 #define LME_MPM_REGISTER_SOFTENING_LAW(CLASS, NAME, DESCRIPTION)                         \
-  namespace                                                                              \
-  {                                                                                      \
-  const bool registered_softening_##CLASS =                                              \
-      ::lme_mpm::SofteningLawRegistry::instance().add(                                   \
-          NAME, {DESCRIPTION, nullptr,                                                   \
-                 [](dealii::ParameterHandler &, const ::lme_mpm::SofteningContext &ctx)  \
-                 { return std::unique_ptr<::lme_mpm::SofteningLaw>(new CLASS(ctx)); }}); \
-  }
+  LME_MPM_REGISTER_PLUGIN(::lme_mpm::SofteningLawRegistry, softening_law, CLASS, NAME,   \
+                          DESCRIPTION, ::lme_mpm::PluginEntries::none)
 
 #endif

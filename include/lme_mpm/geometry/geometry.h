@@ -4,8 +4,9 @@
 #include <deal.II/base/bounding_box.h>
 #include <deal.II/base/point.h>
 
+#include <lme_mpm/base/registry.h>
+
 #include <functional>
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,36 +29,36 @@ public:
   virtual BoundingBox<dim> bounding_box() const  = 0;
 };
 
-/**
- * Shapes by name. A user adds one with GeometryRegistry<dim>::instance().add(...)
- * from a static initialiser in their own source file.
- */
+/// What GeometryRegistry keeps of one shape.
 template <int dim>
-class GeometryRegistry
+struct GeometryEntry
 {
-public:
   using Create =
       std::function<std::unique_ptr<Geometry<dim>>(const std::vector<double> &)>;
-  struct Entry
-  {
-    unsigned int n_arguments;
-    std::string description;
-    Create create;
-  };
+  unsigned int n_arguments;
+  std::string description;
+  Create create;
+};
 
+/**
+ * Shapes by name, on the storage of the plug-in registries (NamedEntries). A user
+ * adds one with GeometryRegistry<dim>::instance().add(name, {n_arguments,
+ * description, create}) from a static initialiser in their own source file.
+ */
+template <int dim>
+class GeometryRegistry : public NamedEntries<GeometryEntry<dim>>
+{
+public:
+  using Entry  = GeometryEntry<dim>;
+  using Create = typename Entry::Create;
+
+  /// The registry, with the built-in shapes.
   static GeometryRegistry &instance();
-  bool add(const std::string &name, Entry entry)
-  {
-    entries[name] = std::move(entry);
-    return true;
-  }
   /// Parses `name(args)`; @p entry names the parameter in error messages.
   std::unique_ptr<Geometry<dim>> create(const std::string &text,
                                         const std::string &entry) const;
+  /// The shapes' descriptions joined by "; ".
   std::string documentation() const;
-
-private:
-  std::map<std::string, Entry> entries;
 };
 } // namespace lme_mpm
 

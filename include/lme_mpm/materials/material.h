@@ -63,22 +63,15 @@ template <int dim>
 using MaterialRegistry = Registry<Material<dim>, MaterialContext>;
 } // namespace lme_mpm
 
-/// Registers material class template CLASS under NAME for dim = 2 and 3.
+/**
+ * Registers material class template CLASS (templated on dim, constructed from
+ * (ParameterHandler &, const MaterialContext &), with a static
+ * declare_parameters(ParameterHandler &)) under NAME for dim = 2 and 3. Its entries
+ * are declared in the subsection "Material N/NAME".
+ */
 #define LME_MPM_REGISTER_MATERIAL(CLASS, NAME, DESCRIPTION)                              \
-  namespace                                                                              \
-  {                                                                                      \
-  template <int dim>                                                                     \
-  bool register_material_##CLASS()                                                       \
-  {                                                                                      \
-    return ::lme_mpm::MaterialRegistry<dim>::instance().add(                             \
-        NAME,                                                                            \
-        {DESCRIPTION, &CLASS<dim>::declare_parameters,                                   \
-         [](dealii::ParameterHandler &prm, const ::lme_mpm::MaterialContext &ctx) {      \
-           return std::unique_ptr<::lme_mpm::Material<dim>>(new CLASS<dim>(prm, ctx));   \
-         }});                                                                            \
-  }                                                                                      \
-  const bool registered_material_2d_##CLASS = register_material_##CLASS<2>();            \
-  const bool registered_material_3d_##CLASS = register_material_##CLASS<3>();            \
-  }
+  LME_MPM_REGISTER_PLUGIN_FOR_DIMS(::lme_mpm::MaterialRegistry, material, CLASS, NAME,   \
+                                   DESCRIPTION,                                          \
+                                   ::lme_mpm::PluginEntries::own_subsection)
 
 #endif

@@ -117,22 +117,8 @@ using ShapeFunctionRegistry = Registry<ShapeFunction<dim>, ShapeFunctionContext<
  * are declared directly in the "Shape functions" subsection.
  */
 #define LME_MPM_REGISTER_SHAPE_FUNCTION(CLASS, NAME, DESCRIPTION)                        \
-  namespace                                                                              \
-  {                                                                                      \
-  template <int dim>                                                                     \
-  bool register_shape_function_##CLASS()                                                 \
-  {                                                                                      \
-    return ::lme_mpm::ShapeFunctionRegistry<dim>::instance().add(                        \
-        NAME, {DESCRIPTION, &CLASS<dim>::declare_parameters,                             \
-               [](dealii::ParameterHandler &prm,                                         \
-                  const ::lme_mpm::ShapeFunctionContext<dim> &ctx) {                     \
-                 return std::unique_ptr<::lme_mpm::ShapeFunction<dim>>(                  \
-                     new CLASS<dim>(prm, ctx));                                          \
-               },                                                                        \
-               false});                                                                  \
-  }                                                                                      \
-  const bool registered_2d_##CLASS = register_shape_function_##CLASS<2>();               \
-  const bool registered_3d_##CLASS = register_shape_function_##CLASS<3>();               \
-  }
+  LME_MPM_REGISTER_PLUGIN_FOR_DIMS(::lme_mpm::ShapeFunctionRegistry, shape_function,     \
+                                   CLASS, NAME, DESCRIPTION,                             \
+                                   ::lme_mpm::PluginEntries::caller_subsection)
 
 #endif
