@@ -141,10 +141,43 @@ TEST(SofteningLaws, AreaEqualsFractureEnergy)
   }
 }
 
+TEST(FractureParameters, EachModelDeclaresWhatItReads)
+{
+  for (const std::string name : {"eigenerosion", "eigensoftening"})
+  {
+    const auto *entry = FractureModelRegistry<2>::instance().find(name);
+    ASSERT_TRUE(entry && entry->declare) << name;
+    EXPECT_FALSE(entry->own_subsection) << name; // straight into "Material N/Fracture"
+    ParameterHandler prm;
+    entry->declare(prm);
+    EXPECT_EQ(prm.get("Epsilon factor"), "2") << name; // the shared entries
+    EXPECT_EQ(prm.get("Fracture energy"), "100") << name;
+  }
+  // What declare_shared_fracture_parameters() relies on: deal.II takes a second
+  // declaration of an entry, which replaces the first one, value included.
+  ParameterHandler prm;
+  prm.declare_entry("Entry", "1", Patterns::Double(0), "first");
+  prm.set("Entry", "5");
+  prm.declare_entry("Entry", "2", Patterns::Double(0), "second");
+  EXPECT_EQ(prm.get("Entry"), "2");
+  // So the shared entries, declared by both built-in models and once more at the end,
+  // come out as if declared once.
+  ParameterHandler once, twice;
+  declare_fracture_parameters<2>(once);
+  declare_fracture_parameters<2>(twice);
+  declare_fracture_parameters<2>(twice);
+  std::ostringstream a, b;
+  once.print_parameters(a, ParameterHandler::PRM);
+  twice.print_parameters(b, ParameterHandler::PRM);
+  EXPECT_EQ(a.str(), b.str());
+  EXPECT_NE(a.str().find("Energy release factor"), std::string::npos);
+  EXPECT_NE(a.str().find("Tensile strength"), std::string::npos);
+}
+
 TEST(Eigensoftening, UnloadingDoesNotHeal)
 {
   ParameterHandler prm;
-  declare_fracture_parameters(prm);
+  declare_fracture_parameters<2>(prm);
   prm.set("Model", "eigensoftening");
   prm.set("Tensile strength", "3e6");
   prm.set("Fracture energy", "50");

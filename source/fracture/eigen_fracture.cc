@@ -10,46 +10,6 @@
 
 namespace lme_mpm
 {
-void declare_fracture_parameters(ParameterHandler &prm)
-{
-  prm.declare_entry(
-      "Model", "none",
-      Patterns::Selection("none|" + FractureModelRegistry<2>::instance().pattern()),
-      "Fracture model of this material: none, or " +
-          FractureModelRegistry<2>::instance().documentation());
-  prm.declare_entry("Epsilon factor", "2", Patterns::Double(0),
-                    "C_eps: the epsilon-neighbourhood radius is C_eps times the grid "
-                    "spacing; > 0, and C_eps h should exceed the particle spacing.");
-  prm.declare_entry(
-      "Energy release factor", "1", Patterns::Double(0),
-      "Eigenerosion only: G_p = factor * eps * (volume-weighted mean energy density "
-      "over the neighbourhood), > 0 (the normalising constant C_eps of the paper's "
-      "eq. 13 is factor * eps). 1 makes a uniformly strained band one neighbourhood "
-      "wide release its stored energy; at a sharp crack tip the asymptotic field "
-      "needs about 7.2 (plane strain, nu = 1/3): doc/validation_mode_i.md.");
-  prm.declare_entry("Fracture energy", "100", Patterns::Double(0),
-                    "G_c (eigenerosion) or G_F (eigensoftening), N/m, > 0.");
-  prm.declare_entry("Tensile strength", "3e6", Patterns::Double(0),
-                    "f_t (Pa), > 0: eigensoftening starts when the neighbourhood's "
-                    "mass-weighted max principal stress exceeds it.");
-  prm.declare_entry("Softening law", "linear",
-                    Patterns::Selection(SofteningLawRegistry::instance().pattern()),
-                    "Cohesive law of eigensoftening. " +
-                        SofteningLawRegistry::instance().documentation());
-  prm.declare_entry("Critical opening", "0", Patterns::Double(0),
-                    "w_c (m) where the law reaches zero traction; 0: the law's own "
-                    "value (linear 2 G_F/f_t, bilinear 3.6 G_F/f_t).");
-  prm.declare_entry("Band width", "0", Patterns::Double(0),
-                    "h_eps (m), the width the crack opening is spread over; 0 ties it to "
-                    "the grid spacing h (crack-band regularisation: a crack localises in "
-                    "one cell with linear shape functions).");
-  prm.declare_entry("Damage rule", "crack band", Patterns::Selection("crack band|paper"),
-                    "'crack band': the damage makes the particle's max principal stress "
-                    "follow the cohesive law, so the band dissipates G_F per unit area; "
-                    "'paper': chi = 1 - g((eps_I - eps_onset) h_eps), the draft's eq. 22 "
-                    "(dissipates more than G_F: doc/theory.md).");
-}
-
 namespace fracture
 {
 template <int dim>
@@ -68,6 +28,31 @@ template <int dim>
 class Eigensoftening : public FractureModel<dim>
 {
 public:
+  static void declare_parameters(ParameterHandler &prm)
+  {
+    declare_shared_fracture_parameters(prm);
+    prm.declare_entry("Tensile strength", "3e6", Patterns::Double(0),
+                      "f_t (Pa), > 0: eigensoftening starts when the neighbourhood's "
+                      "mass-weighted max principal stress exceeds it.");
+    prm.declare_entry("Softening law", "linear",
+                      Patterns::Selection(SofteningLawRegistry::instance().pattern()),
+                      "Cohesive law of eigensoftening. " +
+                          SofteningLawRegistry::instance().documentation());
+    prm.declare_entry("Critical opening", "0", Patterns::Double(0),
+                      "w_c (m) where the law reaches zero traction; 0: the law's own "
+                      "value (linear 2 G_F/f_t, bilinear 3.6 G_F/f_t).");
+    prm.declare_entry("Band width", "0", Patterns::Double(0),
+                      "h_eps (m), the width the crack opening is spread over; 0 ties it "
+                      "to the grid spacing h (crack-band regularisation: a crack "
+                      "localises in one cell with linear shape functions).");
+    prm.declare_entry("Damage rule", "crack band",
+                      Patterns::Selection("crack band|paper"),
+                      "'crack band': the damage makes the particle's max principal "
+                      "stress follow the cohesive law, so the band dissipates G_F per "
+                      "unit area; 'paper': chi = 1 - g((eps_I - eps_onset) h_eps), the "
+                      "draft's eq. 22 (dissipates more than G_F: doc/theory.md).");
+  }
+
   Eigensoftening(ParameterHandler &prm, const FractureContext &c)
       : grid_spacing(c.grid_spacing)
   {
@@ -212,6 +197,18 @@ template <int dim>
 class Eigenerosion : public FractureModel<dim>
 {
 public:
+  static void declare_parameters(ParameterHandler &prm)
+  {
+    declare_shared_fracture_parameters(prm);
+    prm.declare_entry(
+        "Energy release factor", "1", Patterns::Double(0),
+        "Eigenerosion only: G_p = factor * eps * (volume-weighted mean energy density "
+        "over the neighbourhood), > 0 (the normalising constant C_eps of the paper's "
+        "eq. 13 is factor * eps). 1 makes a uniformly strained band one neighbourhood "
+        "wide release its stored energy; at a sharp crack tip the asymptotic field "
+        "needs about 7.2 (plane strain, nu = 1/3): doc/validation_mode_i.md.");
+  }
+
   Eigenerosion(ParameterHandler &prm, const FractureContext &c)
   {
     const double C_eps = prm.get_double("Epsilon factor");

@@ -54,7 +54,24 @@ public:
 template <int dim>
 using FractureModelRegistry = Registry<FractureModel<dim>, FractureContext>;
 
-/// Entries of "Material N/Fracture" shared by the built-in models.
+/**
+ * Entries of "Material N/Fracture" that more than one model reads ("Epsilon factor",
+ * "Fracture energy"). Each such model calls it from its own declare_parameters, so
+ * these entries are declared once per model: deal.II lets an entry be declared again,
+ * the later declaration replacing the value (back to the default), default,
+ * documentation and pattern of the earlier one. As all of them come from this one
+ * function, the repeats change nothing; declare_fracture_parameters() calls it once
+ * more after the models so that these entries are this function's whatever a plug-in
+ * declared under the same names. Call before parsing, like every declaration.
+ */
+void declare_shared_fracture_parameters(dealii::ParameterHandler &prm);
+
+/**
+ * Declares everything in "Material N/Fracture"; call it inside that subsection: the
+ * "Model" selection (none or a registered model) and every registered model's
+ * entries, which its static declare_parameters puts straight into the subsection.
+ */
+template <int dim>
 void declare_fracture_parameters(dealii::ParameterHandler &prm);
 } // namespace lme_mpm
 
