@@ -5,8 +5,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <lme_mpm/base/format.h>
 #include <lme_mpm/shape_functions/shape_function.h>
-#include <lme_mpm/shape_functions/tensor_product.h> // point_to_string
 
 #include <gtest/gtest.h>
 

@@ -1,23 +1,8 @@
+#include <lme_mpm/base/format.h>
 #include <lme_mpm/shape_functions/tensor_product.h>
-
-#include <sstream>
 
 namespace lme_mpm
 {
-template <int dim>
-std::string point_to_string(const Point<dim> &p)
-{
-  std::ostringstream s;
-  s.precision(10);
-  s << "(";
-  for (unsigned int d = 0; d < dim; ++d)
-    s << (d ? ", " : "") << p[d];
-  s << ")";
-  return s.str();
-}
-template std::string point_to_string<2>(const Point<2> &);
-template std::string point_to_string<3>(const Point<3> &);
-
 namespace shape_functions
 {
 /**

@@ -1,6 +1,9 @@
 #ifndef LME_MPM_SHAPE_FUNCTIONS_TENSOR_PRODUCT_H
 #define LME_MPM_SHAPE_FUNCTIONS_TENSOR_PRODUCT_H
 
+// point_to_string moved to base/format.h; still included here for the files that
+// took it from this header (the solver, lme.cc) until they include it themselves.
+#include <lme_mpm/base/format.h>
 #include <lme_mpm/shape_functions/shape_function.h>
 
 #include <array>
@@ -51,10 +54,6 @@ tensor_product_row(const BackgroundGrid<dim> &grid,
   }
   return count;
 }
-
-/// Formats a point for error messages.
-template <int dim>
-std::string point_to_string(const Point<dim> &p);
 } // namespace lme_mpm
 
 #endif
