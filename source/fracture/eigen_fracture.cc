@@ -1,6 +1,5 @@
-#include <deal.II/base/symmetric_tensor.h>
-
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/base/tensor_tools.h>
 #include <lme_mpm/fracture/fracture_model.h>
 #include <lme_mpm/fracture/softening_law.h>
 
@@ -12,12 +11,6 @@ namespace lme_mpm
 {
 namespace fracture
 {
-template <int dim>
-double max_principal(const SymmetricTensor<2, dim> &t)
-{
-  return eigenvalues(t)[0];
-}
-
 /**
  * Eigensoftening (Navas et al. 2018): softening starts where the mass-weighted mean
  * of the max principal stress over the epsilon-neighbourhood (failed neighbours

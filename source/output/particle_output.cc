@@ -2,6 +2,7 @@
 #include <deal.II/lac/vector.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <lme_mpm/base/tensor_tools.h>
 #include <lme_mpm/output/particle_output.h>
 
 #include <cstdio>
@@ -32,12 +33,6 @@ void write_atomically(const std::string &path, const F &write)
   }
   AssertThrow(std::rename(tmp.c_str(), path.c_str()) == 0,
               ExcMessage("Cannot rename '" + tmp + "' to '" + path + "'"));
-}
-
-template <int dim>
-double max_principal(const SymmetricTensor<2, dim> &s)
-{
-  return eigenvalues(s)[0];
 }
 } // namespace
 
