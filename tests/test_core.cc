@@ -9,6 +9,7 @@
 #include "test_helpers.h"
 
 #include <cmath>
+#include <filesystem>
 #include <random>
 
 using namespace lme_mpm;
@@ -125,6 +126,32 @@ std::vector<double> disc_state(const unsigned int threads,
   return state;
 }
 } // namespace
+
+TEST(Output, ParticleAndGridSeriesListEveryFileWritten)
+{
+  lme_mpm_test::run_scene("tension_bar.prm", "series",
+                          {"Output/Write grid files=true",
+                           "Output/Write particle files=true", "Time/End time=2e-5"});
+  const std::string dir = lme_mpm_test::scratch_path("series");
+  // The files a PVD record lists, each checked to exist.
+  const auto listed = [&](const std::string &stem)
+  {
+    const std::string pvd = lme_mpm_test::file_text(dir + "/" + stem + ".pvd");
+    unsigned int n        = 0;
+    for (auto pos = pvd.find("file=\""); pos != std::string::npos;
+         pos      = pvd.find("file=\"", pos + 1), ++n)
+    {
+      const auto begin = pos + 6, end = pvd.find('"', begin);
+      EXPECT_TRUE(std::filesystem::exists(dir + "/" + pvd.substr(begin, end - begin)))
+          << pvd.substr(begin, end - begin);
+    }
+    return n;
+  };
+  const unsigned int particle_files = listed("particles");
+  EXPECT_GE(particle_files, 3u); // t = 0, 1e-5, 2e-5
+  EXPECT_EQ(listed("grid"), particle_files);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/grid_00000.vtu"));
+}
 
 TEST(Threads, ResultsBitwiseIndependentOfThreadCount)
 {
