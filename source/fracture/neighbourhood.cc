@@ -10,7 +10,6 @@ namespace lme_mpm
 template <int dim>
 void Neighbourhood<dim>::build(const std::vector<Point<dim>> &x, const double radius)
 {
-  search_radius       = radius;
   const std::size_t n = x.size();
   offsets.assign(n + 1, 0);
   list.clear();

@@ -45,9 +45,6 @@ void LinearElastic<dim>::setup(const PlaneAssumption plane)
   lambda_eff = (dim == 2 && plane == PlaneAssumption::plane_stress)
                    ? 2 * mu * lambda3 / (lambda3 + 2 * mu)
                    : lambda3;
-  C          = lambda_eff *
-          outer_product(unit_symmetric_tensor<dim>(), unit_symmetric_tensor<dim>()) +
-      2 * mu * identity_tensor<dim>();
 }
 
 template <int dim>

@@ -25,14 +25,11 @@ public:
   void build(const std::vector<Point<dim>> &positions, double radius);
 
   std::size_t size() const { return offsets.empty() ? 0 : offsets.size() - 1; }
-  double radius() const { return search_radius; }
   const std::uint32_t *begin(const std::size_t p) const { return &list[offsets[p]]; }
   const std::uint32_t *end(const std::size_t p) const { return &list[offsets[p + 1]]; }
-  std::size_t count(const std::size_t p) const { return offsets[p + 1] - offsets[p]; }
   std::size_t n_pairs() const { return list.size(); }
 
 private:
-  double search_radius = 0;
   std::vector<std::size_t> offsets;
   std::vector<std::uint32_t> list;
   // Binning scratch, kept between builds.

@@ -31,16 +31,10 @@ public:
   double strain_energy(const ParticleStore<dim> &particles, std::size_t begin,
                        std::size_t end, unsigned int material_id) const override;
 
-  /// The in-plane stiffness tensor.
-  const SymmetricTensor<4, dim> &stiffness() const { return C; }
-  double lame_lambda() const { return lambda_eff; }
-  double shear_modulus() const { return mu; }
-
 private:
   void setup(PlaneAssumption plane);
 
   double rho = 0, E = 0, nu = 0, mu = 0, lambda_eff = 0;
-  SymmetricTensor<4, dim> C;
 };
 } // namespace materials
 } // namespace lme_mpm
