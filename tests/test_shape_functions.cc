@@ -559,35 +559,41 @@ TEST(ShapeFunctions, ConsistencyGraded3D)
       { check_random_particles<3>("lme", g, lme_settings<3>(gamma), 100, 8); });
 }
 
-TEST(ShapeFunctions, GradientsMatchFiniteDifferences2D)
+/**
+ * Gradients of every family on a uniform grid of @p n_cells cells per direction and
+ * on a graded grid, at @p n_particles random particles (half as many for LME), with
+ * random seeds seed, seed + 1, ...
+ */
+template <int dim>
+void check_all_gradients(const unsigned int n_cells, const unsigned int n_particles,
+                         const unsigned int seed)
 {
-  auto uniform = uniform_grid<2>(0.1, 12);
-  auto graded  = graded_grid<2>();
+  auto uniform = uniform_grid<dim>(0.1, n_cells);
+  auto graded  = graded_grid<dim>();
   for (const std::string type : {"linear", "ugimp", "bspline"})
-    check_gradients<2>(type, *uniform, {}, 40, 11);
+    check_gradients<dim>(type, *uniform, {}, n_particles, seed);
   for (const std::string type : {"linear", "ugimp"})
-    check_gradients<2>(type, *graded, {}, 40, 12);
+    check_gradients<dim>(type, *graded, {}, n_particles, seed + 1);
   // A tighter Newton tolerance: the multiplier's error enters the differences / delta.
   for (const double gamma : lme_gammas)
-    check_gradients<2>("lme", *uniform, lme_settings<2>(gamma, 1e-14), 20, 13);
-  for_lme_graded_cases<2>(
-      [](const BackgroundGrid<2> &g, const double gamma)
-      { check_gradients<2>("lme", g, lme_settings<2>(gamma, 1e-14), 20, 14); });
+    check_gradients<dim>("lme", *uniform, lme_settings<dim>(gamma, 1e-14),
+                         n_particles / 2, seed + 2);
+  for_lme_graded_cases<dim>(
+      [&](const BackgroundGrid<dim> &g, const double gamma)
+      {
+        check_gradients<dim>("lme", g, lme_settings<dim>(gamma, 1e-14), n_particles / 2,
+                             seed + 3);
+      });
+}
+
+TEST(ShapeFunctions, GradientsMatchFiniteDifferences2D)
+{
+  check_all_gradients<2>(12, 40, 11);
 }
 
 TEST(ShapeFunctions, GradientsMatchFiniteDifferences3D)
 {
-  auto uniform = uniform_grid<3>(0.1, 8);
-  auto graded  = graded_grid<3>();
-  for (const std::string type : {"linear", "ugimp", "bspline"})
-    check_gradients<3>(type, *uniform, {}, 20, 21);
-  for (const std::string type : {"linear", "ugimp"})
-    check_gradients<3>(type, *graded, {}, 20, 22);
-  for (const double gamma : lme_gammas)
-    check_gradients<3>("lme", *uniform, lme_settings<3>(gamma, 1e-14), 10, 23);
-  for_lme_graded_cases<3>(
-      [](const BackgroundGrid<3> &g, const double gamma)
-      { check_gradients<3>("lme", g, lme_settings<3>(gamma, 1e-14), 10, 24); });
+  check_all_gradients<3>(8, 20, 21);
 }
 
 TEST(ShapeFunctions, LmeNewtonIterations2D)

@@ -1,0 +1,182 @@
+// Checkpoints: a run resumed from one ends bit for bit where the uninterrupted run
+// does (also through fracture, crack growth and a redone transfer), and a checkpoint
+// of another run or format is refused with a clear message.
+#include <gtest/gtest.h>
+
+#include "test_helpers.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+
+namespace
+{
+using lme_mpm_test::checksum;
+using lme_mpm_test::file_text;
+using lme_mpm_test::with_settings;
+
+/// Runs @p prm with @p settings to its end in @p dir; returns the run's results.
+std::map<std::string, double> run(const std::string &prm,
+                                  const std::vector<std::string> &settings,
+                                  const std::string &dir)
+{
+  std::ostringstream quiet;
+  return lme_mpm::run_parameter_file(prm, with_settings(settings, {}, dir), quiet);
+}
+
+/**
+ * Runs @p prm with @p overrides (which write checkpoints into @p dir) to its end,
+ * lets @p edit change the last checkpoint, and resumes from it in @p dir.
+ */
+void run_and_resume(const std::string &prm, const std::vector<std::string> &overrides,
+                    const std::string &dir,
+                    const std::function<void(const std::string &)> &edit = {})
+{
+  std::ostringstream quiet;
+  lme_mpm::run_parameter_file(prm, overrides, quiet);
+  ASSERT_TRUE(std::filesystem::exists(dir + "/checkpoint.bin"));
+  if (edit)
+    edit(dir + "/checkpoint.bin");
+  lme_mpm::run_parameter_file(prm, overrides, quiet, dir);
+}
+
+/// The run in @p b ended in the state of the one in @p a, and wrote the same history.
+void expect_same_run(const std::string &a, const std::string &b)
+{
+  EXPECT_FALSE(checksum(a).empty());
+  EXPECT_EQ(checksum(a), checksum(b));
+  EXPECT_EQ(file_text(a + "/history.csv"), file_text(b + "/history.csv"));
+}
+} // namespace
+
+TEST(Checkpoint, ResumedRunEndsBitwiseIdentical)
+{
+  // The tension bar with eigensoftening (damage, onset data and dissipation in the
+  // state) and LME (warm-start multipliers), resumed from a mid-run checkpoint.
+  const std::vector<std::string> scene = {"Grid/Cell size=0.005",
+                                          "Grid/Upper corner=0.1, 0.005",
+                                          "Body 1/Shape=rectangle(0.05, 0, 0.055, 0.005)",
+                                          "Body 2/Shape=rectangle(0, 0, 0.1, 0.005)",
+                                          "Body 2/Holes=rectangle(0.05, 0, 0.055, 0.005)",
+                                          "Shape functions/Type=lme",
+                                          "Output/Verbosity=0",
+                                          "Output/Output interval=2e-4"};
+  const std::string prm                = lme_mpm_test::scene("tension_bar.prm");
+  const std::string a                  = lme_mpm_test::scratch("ckpt_a"),
+                    b                  = lme_mpm_test::scratch("ckpt_b");
+  std::ostringstream quiet;
+  auto with = [&](const std::vector<std::string> &extra, const std::string &dir)
+  { return with_settings(scene, extra, dir); };
+  const auto full = run(prm, scene, a);
+  EXPECT_GT(full.at("dissipated_energy"), 0); // the checkpoints span the fracture
+  // Continue from the last checkpoint, written some steps before the end.
+  run_and_resume(prm, with_settings(scene, {"Checkpoint/Every steps=1000"}, b), b);
+  EXPECT_TRUE(std::filesystem::exists(b + "/checkpoint.bin.prev"));
+  expect_same_run(a, b);
+  EXPECT_EQ(file_text(a + "/particles.pvd"), file_text(b + "/particles.pvd"));
+
+  // A checkpoint of another run is refused with a clear message.
+  try
+  {
+    lme_mpm::run_parameter_file(prm,
+                                with({"Time/End time=0.004", "Grid/Cell size=0.0025",
+                                      "Grid/Upper corner=0.1, 0.0025"},
+                                     b),
+                                quiet, b);
+    ADD_FAILURE() << "resumed a mismatched checkpoint";
+  }
+  catch (const std::exception &e)
+  {
+    EXPECT_NE(lme_mpm::input::concise_message(e).find("--resume"), std::string::npos)
+        << lme_mpm::input::concise_message(e);
+  }
+
+  // So is a checkpoint in another format version, and a file that is no checkpoint.
+  const auto refused = [&](const std::string &bytes, const std::string &expected)
+  {
+    {
+      std::ofstream f(b + "/checkpoint.bin", std::ios::binary);
+      f << bytes;
+    }
+    try
+    {
+      lme_mpm::run_parameter_file(prm, with({}, b), quiet, b);
+      ADD_FAILURE() << "resumed from '" << bytes << "'";
+    }
+    catch (const std::exception &e)
+    {
+      EXPECT_NE(lme_mpm::input::concise_message(e).find(expected), std::string::npos)
+          << lme_mpm::input::concise_message(e);
+    }
+  };
+  std::string other_version = file_text(b + "/checkpoint.bin.prev");
+  ASSERT_GE(other_version.size(), 8u);
+  other_version[7] = '1'; // the format before this one
+  refused(other_version, "written by another version");
+  refused("not a checkpoint", "is not an lme-mpm checkpoint");
+}
+
+TEST(Checkpoint, TooNarrowSlabsAreRedone)
+{
+  // The slab width of the fused particle-to-grid pass is the supports' reach so
+  // far; a chunk reaching further does not scatter, and the transfer is redone with
+  // the wider reach. A checkpoint whose stored reach (after magic, dim, size, dt,
+  // steps, t and step: bytes 44 and 48, below and above) is cut by one layer in one
+  // direction forces that path on the first resumed step. On the graded grid only
+  // the supports of coarse cells next to the fine half reach the extra layer, so
+  // the other chunks scatter before the redo, whose sums must be cleared: the result
+  // must still be the uninterrupted run's, bit for bit.
+  const std::vector<std::string> scene = {
+      "Grid/Step sizes y=20*0.025, 40*0.0125", "Time/End time=1", "Output/Verbosity=0",
+      "Output/Write particle files=false", "Output/Output interval=0.25"};
+  const std::string prm = lme_mpm_test::scene("two_disk_collision.prm");
+  const std::string a   = lme_mpm_test::scratch("slab_a"),
+                    b   = lme_mpm_test::scratch("slab_b");
+  run(prm, scene, a);
+  for (const unsigned int direction : {0, 1}) // below, above
+  {
+    SCOPED_TRACE(direction ? "reach cut above" : "reach cut below");
+    const auto cut_reach = [&](const std::string &checkpoint)
+    {
+      std::fstream f(checkpoint, std::ios::in | std::ios::out | std::ios::binary);
+      std::uint32_t reach[2] = {0, 0};
+      f.seekg(44);
+      f.read(reinterpret_cast<char *>(reach), sizeof reach);
+      ASSERT_GT(reach[direction], 0u);
+      --reach[direction];
+      f.seekp(44);
+      f.write(reinterpret_cast<const char *>(reach), sizeof reach);
+    };
+    run_and_resume(prm, with_settings(scene, {"Checkpoint/Every steps=100"}, b), b,
+                   cut_reach);
+    expect_same_run(a, b);
+  }
+}
+
+TEST(Checkpoint, GrowingCrackResumesBitwiseIdentical)
+{
+  // The coarse panel through crack initiation and growth; the last checkpoint falls
+  // after the crack has started to grow, so the resumed run must rebuild the grown
+  // crack and its second fields exactly. Linear shape functions keep it short under
+  // the sanitizers.
+  const std::vector<std::string> o = {"Shape functions/Type=linear",
+                                      "Grid/Cell size=0.05",
+                                      "Body 1/Holes=slot(0, 0.5, 0.25, 0.025, 0)",
+                                      "Time/End time=22",
+                                      "Output/Write particle files=false",
+                                      "Output/Verbosity=0",
+                                      "Checkpoint/Every steps=600"};
+  const std::string prm            = lme_mpm_test::scene("mode_i_panel.prm");
+  const std::string a              = lme_mpm_test::scratch("crack_ckpt_a"),
+                    b              = lme_mpm_test::scratch("crack_ckpt_b");
+  const auto full                  = run(prm, o, a);
+  const std::string grown          = file_text(a + "/cracks.csv");
+  EXPECT_GT(std::count(grown.begin(), grown.end(), '\n'), 4) << grown; // it grew
+  EXPECT_GT(full.at("steps"), 1800);
+  run_and_resume(prm, with_settings(o, {}, b), b);
+  expect_same_run(a, b);
+  EXPECT_EQ(grown, file_text(b + "/cracks.csv"));
+}
