@@ -2,6 +2,7 @@
 
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/base/parallel.h>
+#include <lme_mpm/base/tensor_tools.h>
 #include <lme_mpm/fracture/fracture_coupling.h>
 
 #include <cmath>
@@ -16,8 +17,7 @@ void FractureCoupling<dim>::declare_parameters(ParameterHandler &prm,
   {
     prm.enter_subsection(input::subsection_name("Material", m));
     prm.enter_subsection("Fracture");
-    declare_fracture_parameters(prm);
-    FractureModelRegistry<dim>::instance().declare_all(prm);
+    declare_fracture_parameters<dim>(prm);
     prm.leave_subsection();
     prm.leave_subsection();
   }

@@ -6,9 +6,8 @@
 namespace lme_mpm
 {
 template <int dim>
-ParticleOutput<dim>::ParticleOutput(const std::string &directory, const bool write_grid)
-    : particle_files(directory, "particles"), grid_output(directory),
-      grid_enabled(write_grid)
+ParticleOutput<dim>::ParticleOutput(const std::string &directory)
+    : particle_files(directory, "particles")
 {
 }
 

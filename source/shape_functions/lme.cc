@@ -1,3 +1,4 @@
+#include <lme_mpm/base/format.h>
 #include <lme_mpm/shape_functions/tensor_product.h>
 
 #include <algorithm>

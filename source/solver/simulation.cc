@@ -1,9 +1,9 @@
 #include <deal.II/base/multithread_info.h>
 
+#include <lme_mpm/base/format.h>
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/base/parallel.h>
 #include <lme_mpm/geometry/particle_generator.h>
-#include <lme_mpm/shape_functions/tensor_product.h>
 #include <lme_mpm/solver/checkpoint.h>
 #include <lme_mpm/solver/simulation.h>
 
@@ -76,7 +76,15 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
 
   if (parameters.output_interval <= 0)
     parameters.output_interval = parameters.end_time / 20;
-  output = std::make_unique<ParticleOutput<dim>>(output_directory, parameters.write_grid);
+  setup_output(output_directory);
+}
+
+template <int dim>
+void Simulation<dim>::setup_output(const std::string &directory)
+{
+  output_directory = directory;
+  particle_output  = std::make_unique<ParticleOutput<dim>>(directory);
+  grid_output      = std::make_unique<GridOutput<dim>>(directory);
 }
 
 template <int dim>
@@ -276,8 +284,8 @@ void Simulation<dim>::serialize(Archive &ar)
   ar(history_size);
   resumed_history_size = history_size;
   constraints.serialize(ar);
-  auto particle_series = output->particle_series();
-  auto grid_series     = output->grid_series();
+  auto particle_series = particle_output->series();
+  auto grid_series     = grid_output->series();
   ar(particle_series, grid_series);
   store.for_each_field([&](auto &field) { ar(field); });
   auto lines = cracks.polylines();
@@ -289,7 +297,8 @@ void Simulation<dim>::serialize(Archive &ar)
                                           std::to_string(lines.size()) +
                                           " cracks, the parameter file " +
                                           std::to_string(cracks.polylines().size())));
-  output->restore(particle_series, grid_series);
+  particle_output->restore(particle_series);
+  grid_output->restore(grid_series);
   cracks.restore(std::move(lines));
   transfer.nodes().layout.reinit(background.n_nodes());
   cracks.assign_fields(background, crack_reach, transfer.nodes().layout);
@@ -305,13 +314,12 @@ void Simulation<dim>::write_checkpoint()
 template <int dim>
 void Simulation<dim>::resume_from(const std::string &directory)
 {
-  // Output goes on in the checkpoint's directory (without grid files).
-  output = std::make_unique<ParticleOutput<dim>>(directory, false);
+  // Output goes on in the checkpoint's directory.
+  setup_output(directory);
   checkpoint::read(directory + "/checkpoint.bin", [&](Archive &ar) { serialize(ar); });
   AssertThrow(step_count <= n_steps,
               ExcBadInput("--resume", "the checkpoint is past this run's end time"));
-  output_directory = directory;
-  resumed          = true;
+  resumed = true;
 }
 
 template <int dim>
@@ -355,8 +363,9 @@ void Simulation<dim>::write_output_row()
   results["final_strain_energy"]  = e.strain;
 
   if (parameters.write_particles)
-    output->write(store, t);
-  output->write_grid(background, transfer.nodes().mass, transfer.nodes().rate, t);
+    particle_output->write(store, t);
+  if (parameters.write_grid)
+    grid_output->write(background, transfer.nodes().mass, transfer.nodes().rate, t);
 }
 
 template <int dim>

@@ -40,8 +40,6 @@ public:
   unsigned int n_nodes_in(const unsigned int d) const { return coords[d].size(); }
   /// Stride of direction d in the node index.
   unsigned int node_stride(const unsigned int d) const { return node_strides[d]; }
-  /// Nodes in one layer of the slowest direction (the colouring slabs' unit).
-  unsigned int nodes_per_layer() const { return node_strides[dim - 1]; }
   unsigned int cells_per_layer() const { return cell_strides[dim - 1]; }
 
   /// Node coordinates along direction d.

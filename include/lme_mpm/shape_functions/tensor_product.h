@@ -1,9 +1,6 @@
 #ifndef LME_MPM_SHAPE_FUNCTIONS_TENSOR_PRODUCT_H
 #define LME_MPM_SHAPE_FUNCTIONS_TENSOR_PRODUCT_H
 
-// point_to_string moved to base/format.h; still included here for the files that
-// took it from this header (the solver, lme.cc) until they include it themselves.
-#include <lme_mpm/base/format.h>
 #include <lme_mpm/shape_functions/shape_function.h>
 
 #include <array>

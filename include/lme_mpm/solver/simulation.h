@@ -13,6 +13,7 @@
 #include <lme_mpm/materials/material_set.h>
 #include <lme_mpm/output/energy_balance.h>
 #include <lme_mpm/output/exact_solution.h>
+#include <lme_mpm/output/grid_output.h>
 #include <lme_mpm/output/history_file.h>
 #include <lme_mpm/output/particle_output.h>
 #include <lme_mpm/output/peak_force.h>
@@ -95,6 +96,8 @@ private:
 
   // Set-up.
   void setup_particles(ParameterHandler &prm, const ParameterCounts &counts);
+  /// The particle and grid file series in @p directory.
+  void setup_output(const std::string &directory);
 
   // The run loop and its output.
   void prepare_output();
@@ -133,7 +136,8 @@ private:
   PeakForce<dim> peak_force;
   Probes<dim> probes;
   ExactSolution<dim> exact;
-  std::unique_ptr<ParticleOutput<dim>> output;
+  std::unique_ptr<ParticleOutput<dim>> particle_output;
+  std::unique_ptr<GridOutput<dim>> grid_output;
   HistoryFile history;
   double next_output_time            = 0;
   bool resumed                       = false;
