@@ -215,15 +215,17 @@ void NodeConstraints<dim>::impose_rates(std::vector<Tensor<1, dim>> &x,
 template <int dim>
 void NodeConstraints<dim>::impose_accelerations(std::vector<Tensor<1, dim>> &x,
                                                 const FieldLayout &layout, const double t,
-                                                const double dt) const
+                                                const double h) const
 {
-  // The velocity change over the step (not the derivative at one time), so that
-  // the corrected nodal velocity lands on the prescribed one.
+  // The derivative at the end of the step, not the mean acceleration over it: the
+  // trapezoidal corrector then carries the particle velocities at driven nodes onto
+  // the prescribed ones instead of half a step behind while the velocity changes.
   for (const auto &c : sets)
     c->impose(
         x, layout,
-        [&](const unsigned int i) { return c->velocity(i, t + dt) - c->velocity(i, t); },
-        dt);
+        [&](const unsigned int i)
+        { return c->velocity(i, t + h) - c->velocity(i, t - h); },
+        2 * h);
 }
 
 template <int dim>

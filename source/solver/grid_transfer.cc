@@ -245,6 +245,23 @@ double GridTransfer<dim>::grid_to_particles(const ExplicitNewmark &newmark,
 }
 
 template <int dim>
+void GridTransfer<dim>::interpolate_accelerations()
+{
+  parallel::for_range(particles.size(),
+                      [&](const std::size_t b, const std::size_t e)
+                      {
+                        for (std::size_t p = b; p < e; ++p)
+                        {
+                          const std::size_t o = p * conn.stride;
+                          Tensor<1, dim> a;
+                          for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+                            a += conn.N[o + k] * fields.acceleration[conn.nodes[o + k]];
+                          particles.acceleration[p] = a;
+                        }
+                      });
+}
+
+template <int dim>
 void GridTransfer<dim>::apply_consistent_mass(const std::vector<Tensor<1, dim>> &x,
                                               std::vector<Tensor<1, dim>> &Mx)
 {

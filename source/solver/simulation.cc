@@ -54,6 +54,10 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
   n_steps = ts.n_steps;
 
   setup_particles(prm, counts);
+  double min_mass = std::numeric_limits<double>::max();
+  for (const double m : store.mass)
+    min_mass = std::min(min_mass, m);
+  mass_tolerance = 1e-12 * min_mass;
 
   ShapeFunctionContext<dim> sf_context;
   sf_context.grid      = &background;
@@ -111,6 +115,8 @@ template <int dim>
 void Simulation<dim>::step()
 {
   const double t_half = t + 0.5 * dt, t_new = t + dt;
+  if (!accelerations_initialised)
+    initialise_accelerations();
   // A crack that grew with last step's failures separates the field along its new
   // part from this step on.
   if (fracture.active() && cracks.grow(store, particle_spacing))
@@ -124,6 +130,28 @@ void Simulation<dim>::step()
   ++step_count;
   if (bad < store.size())
     abort_unstable(bad);
+}
+
+template <int dim>
+void Simulation<dim>::initialise_accelerations()
+{
+  // The scheme starts from a^0 = M^-1 f(u^0): with a body force, an initial stress or
+  // an accelerating prescribed velocity, a^0 = 0 would lose dt/2 a^0 in the first
+  // predictor and corrector and leave a lasting velocity offset (first order in dt).
+  NodalFields<dim> &nodes = transfer.nodes();
+  locate_and_sort();
+  particles_to_grid();
+  transfer.scatter_chunks([&](const std::size_t b, const std::size_t e)
+                          { transfer.forces(b, e, parameters.body_force); });
+  transfer.accelerations(mass_tolerance);
+  const auto constrain = [&](std::vector<Tensor<1, dim>> &x)
+  { constraints.impose_accelerations(x, nodes.layout, t, derivative_step()); };
+  constrain(nodes.acceleration);
+  transfer.correct_towards_consistent_mass(nodes.acceleration, nodes.force,
+                                           parameters.mass_corrections, mass_tolerance,
+                                           constrain);
+  transfer.interpolate_accelerations();
+  accelerations_initialised = true;
 }
 
 template <int dim>
@@ -207,13 +235,14 @@ const std::vector<Tensor<1, dim>> *Simulation<dim>::correct_accelerations()
   NodalFields<dim> &nodes = transfer.nodes();
   transfer.accelerations(mass_tolerance);
   crack_contact.on_accelerations(newmark.gamma * dt);
-  constraints.impose_accelerations(nodes.acceleration, nodes.layout, t, dt);
+  const auto constrain = [&](std::vector<Tensor<1, dim>> &x)
+  { constraints.impose_accelerations(x, nodes.layout, t + dt, derivative_step()); };
+  constrain(nodes.acceleration);
   if (parameters.mass_corrections == 0)
     return nullptr;
-  transfer.correct_towards_consistent_mass(
-      nodes.acceleration, nodes.force, parameters.mass_corrections, mass_tolerance,
-      [&](std::vector<Tensor<1, dim>> &x)
-      { constraints.impose_accelerations(x, nodes.layout, t, dt); });
+  transfer.correct_towards_consistent_mass(nodes.acceleration, nodes.force,
+                                           parameters.mass_corrections, mass_tolerance,
+                                           constrain);
   if (constraints.empty())
     return nullptr;
   // The reaction is what the constraint adds to the force: M a - f on its nodes.
@@ -319,7 +348,8 @@ void Simulation<dim>::resume_from(const std::string &directory)
   checkpoint::read(directory + "/checkpoint.bin", [&](Archive &ar) { serialize(ar); });
   AssertThrow(step_count <= n_steps,
               ExcBadInput("--resume", "the checkpoint is past this run's end time"));
-  resumed = true;
+  resumed                   = true;
+  accelerations_initialised = true;
 }
 
 template <int dim>
@@ -371,10 +401,6 @@ void Simulation<dim>::write_output_row()
 template <int dim>
 void Simulation<dim>::prepare_output()
 {
-  double min_mass = std::numeric_limits<double>::max();
-  for (const double m : store.mass)
-    min_mass = std::min(min_mass, m);
-  mass_tolerance = 1e-12 * min_mass;
   exact.compute_norms(store, parameters.end_time, parameters.output_interval);
 
   // Only now, with every input checked, does the run write anything.

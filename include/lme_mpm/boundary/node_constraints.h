@@ -118,9 +118,13 @@ public:
   /// The prescribed velocities at time @p t on the displacement rates @p x.
   void impose_rates(std::vector<Tensor<1, dim>> &x, const FieldLayout &layout,
                     double t) const;
-  /// The prescribed velocity change from @p t to @p t + @p dt, over dt, on @p x.
+  /**
+   * The prescribed accelerations at time @p t on @p x: the time derivative of the
+   * prescribed velocity, by a central difference of half-width @p h (small against
+   * the time over which the velocity changes; the time step is far larger).
+   */
   void impose_accelerations(std::vector<Tensor<1, dim>> &x, const FieldLayout &layout,
-                            double t, double dt) const;
+                            double t, double h) const;
 
   /// Updates every set's reaction and displacement; returns their work over the step.
   double update_reactions(const FieldLayout &layout, const std::vector<double> &mass,

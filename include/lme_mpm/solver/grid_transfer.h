@@ -79,6 +79,10 @@ public:
                            const Tensor<1, dim> &body_force, double max_move,
                            std::size_t &bad);
 
+  /// The particles' accelerations from the nodal ones (no other update): the start
+  /// of the scheme.
+  void interpolate_accelerations();
+
   /// Mx = M_C x with the consistent mass matrix (two transfers, no matrix stored).
   void apply_consistent_mass(const std::vector<Tensor<1, dim>> &x,
                              std::vector<Tensor<1, dim>> &Mx);

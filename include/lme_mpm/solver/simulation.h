@@ -81,6 +81,7 @@ public:
 
 private:
   // The stages of a step, in order.
+  void initialise_accelerations();
   void locate_and_sort();
   void particles_to_grid();
   void predict_displacement_rates(double t_half);
@@ -93,6 +94,8 @@ private:
   std::size_t
   update_particles(const std::vector<Tensor<1, dim>> *mass_times_acceleration);
   void abort_unstable(std::size_t p) const;
+  /// Half-width of the central difference that gives prescribed accelerations.
+  double derivative_step() const { return 1e-3 * dt; }
 
   // Set-up.
   void setup_particles(ParameterHandler &prm, const ParameterCounts &counts);
@@ -128,6 +131,8 @@ private:
   double dt = 0, t = 0;
   unsigned int n_steps = 0, step_count = 0;
   double mass_tolerance = 0;
+  /// a^0 = M^-1 f(u^0) is on the particles (computed, or read from a checkpoint).
+  bool accelerations_initialised = false;
   // Farthest a support reaches (for the cracks' second fields) and the smallest
   // particle spacing of the bodies (for their growth).
   double crack_reach = 0, particle_spacing = std::numeric_limits<double>::max();
