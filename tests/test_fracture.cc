@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <fstream>
+#include <iostream>
 #include <random>
 
 using namespace lme_mpm;
@@ -223,6 +224,56 @@ TEST(Eigensoftening, UnloadingDoesNotHeal)
   load(1e-2); // far beyond w_c: fully failed
   EXPECT_EQ(P.damage[0], 1.0);
   EXPECT_EQ(P.failed[0], 1);
+}
+
+TEST(Eigensoftening, DissipatesFractureEnergyWhateverItsOwnStressAtOnset)
+{
+  // Onset is triggered by the neighbourhood's mean stress, so a particle may start
+  // softening with its own stress s0 above or below f_t. One particle of a band
+  // h = 0.05 m wide (volume h per unit crack area) pulled until it fails must still
+  // dissipate G_F per unit area. With the law anchored at f_t it dissipated
+  // G_F [1 + (s0^2/f_t^2 - 1) h / (2 l_ch)]: 1.19 G_F at s0 = 1.5 f_t, 0.94 at 0.8.
+  const double E = 30e9, f_t = 3e6, G_F = 50, h = 0.05;
+  ParameterHandler prm;
+  declare_fracture_parameters<2>(prm);
+  prm.set("Model", "eigensoftening");
+  prm.set("Tensile strength", std::to_string(f_t));
+  prm.set("Fracture energy", std::to_string(G_F));
+  prm.set("Band width", std::to_string(h));
+  FractureContext fc;
+  fc.grid_spacing   = 0.01;
+  fc.p_wave_modulus = E;
+  fc.section        = "test";
+  for (const char *name : {"linear", "exponential"})
+    for (const double ratio : {0.8, 1.0, 1.5})
+    {
+      prm.set("Softening law", name);
+      const auto model =
+          FractureModelRegistry<2>::instance().create("eigensoftening", prm, fc);
+      ParticleStore<2> P;
+      P.add(Point<2>(0, 0), 1.0, h, 0, 0);
+      Neighbourhood<2> nb;
+      nb.build(P.position, model->epsilon());
+      const double s0   = ratio * f_t;
+      P.onset_strain[0] = s0 / E;
+      P.onset_stress[0] = s0;
+      FractureFields F;
+      // Small strain steps: the secant dissipation sum converges at first order.
+      const double step = 1e-4 * s0 / E;
+      for (double strain = s0 / E; !P.failed[0] && strain < 1; strain += step)
+      {
+        P.strain[0]            = SymmetricTensor<2, 2>();
+        P.strain[0][0][0]      = strain;
+        P.stress[0]            = E * P.strain[0];
+        F.max_principal_stress = {P.stress[0][0][0]};
+        F.energy_density       = {0.5 * (P.stress[0] * P.strain[0])};
+        model->update(P, nb, F, 0, 1, 0);
+      }
+      ASSERT_TRUE(P.failed[0]) << name << " s0/f_t = " << ratio;
+      std::cout << name << " law, s0/f_t = " << ratio
+                << ": dissipated / G_F = " << P.dissipated[0] / G_F << "\n";
+      EXPECT_NEAR(P.dissipated[0] / G_F, 1.0, 0.01) << name << " s0/f_t = " << ratio;
+    }
 }
 
 TEST(TensionBar, EigensofteningDissipatesFractureEnergyAtThreeResolutions)

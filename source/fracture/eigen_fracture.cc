@@ -117,17 +117,23 @@ public:
         chi_new = 1 - law->traction_ratio(std::max(0.0, strain_beyond) * h);
       else
       {
-        const double M = P.onset_stress[p] / P.onset_strain[p];
-        if (1 / h <= f_t * law->max_slope() / M)
+        // The cohesive law starts at the particle's own stress at onset s0 (the
+        // neighbourhood's mean reached f_t, its own need not have): peak s0, openings
+        // scaled by f_t / s0, so that the area under it, the energy per unit crack
+        // area, stays G_F whatever s0 is.
+        const double s0 = P.onset_stress[p], r = s0 / f_t;
+        const double M = s0 / P.onset_strain[p];
+        if (1 / h <= s0 * r * law->max_slope() / M)
         {
           chi_new = 1; // beyond the snap-back limit: breaks at once
           ++snapped;
         }
         else
         {
-          const double w = opening(strain_beyond, h, M);
-          const double s = f_t * law->traction_ratio(w);
-          chi_new        = w >= w_c ? 1.0 : (sig_I > s ? 1 - s / sig_I : 0.0);
+          const double w_end = w_c / r;
+          const double w     = opening(strain_beyond, h, M, s0, r, w_end);
+          const double s     = s0 * law->traction_ratio(r * w);
+          chi_new            = w >= w_end ? 1.0 : (sig_I > s ? 1 - s / sig_I : 0.0);
         }
       }
       const double chi_old = P.damage[p];
@@ -155,17 +161,19 @@ private:
   /**
    * Crack opening w for a band strain beyond onset: the band strain is the elastic
    * change of the cohesive stress plus the opening spread over h,
-   * d eps = f_t (g(w) - 1) / M + w / h, increasing in w below the snap-back limit.
+   * d eps = s0 (g(r w) - 1) / M + w / h, increasing in w below the snap-back limit
+   * (the law of peak s0 = r f_t that ends at w_end = w_c / r).
    */
-  double opening(const double strain_beyond, const double h, const double M) const
+  double opening(const double strain_beyond, const double h, const double M,
+                 const double s0, const double r, const double w_end) const
   {
     if (strain_beyond <= 0)
       return 0;
     auto F = [&](const double w)
-    { return f_t * (law->traction_ratio(w) - 1) / M + w / h - strain_beyond; };
-    if (F(w_c) <= 0)
-      return w_c;
-    double lo = 0, hi = w_c;
+    { return s0 * (law->traction_ratio(r * w) - 1) / M + w / h - strain_beyond; };
+    if (F(w_end) <= 0)
+      return w_end;
+    double lo = 0, hi = w_end;
     for (int i = 0; i < 60; ++i)
     {
       const double mid       = 0.5 * (lo + hi);
