@@ -15,7 +15,8 @@ template <int dim>
 void ParticleOutput<dim>::write(const ParticleStore<dim> &particles, const double time)
 {
   const std::size_t n = particles.size();
-  // Scalars: stress components, max principal stress, damage, ids; vectors first.
+  // Vectors first, then scalars: the effective stress (what the forces use) and the
+  // undamaged one, the max principal effective stress, damage, ids.
   std::vector<std::string> names;
   std::vector<std::tuple<unsigned int, unsigned int, std::string,
                          DataComponentInterpretation::DataComponentInterpretation>>
@@ -28,9 +29,10 @@ void ParticleOutput<dim>::write(const ParticleStore<dim> &particles, const doubl
       names.push_back(v);
   }
   const char *comp[3] = {"x", "y", "z"};
-  for (unsigned int i = 0; i < dim; ++i)
-    for (unsigned int j = i; j < dim; ++j)
-      names.push_back(std::string("stress_") + comp[i] + comp[j]);
+  for (const char *stress : {"stress_", "undamaged_stress_"})
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = i; j < dim; ++j)
+        names.push_back(std::string(stress) + comp[i] + comp[j]);
   for (const char *s : {"max_principal_stress", "damage", "failed", "onset_strain",
                         "material_id", "body_id", "particle_id", "density"})
     names.push_back(s);
@@ -47,10 +49,12 @@ void ParticleOutput<dim>::write(const ParticleStore<dim> &particles, const doubl
       patch.data(k++, 0) = particles.position[p][d] - particles.reference_position[p][d];
     for (unsigned int d = 0; d < dim; ++d)
       patch.data(k++, 0) = particles.velocity[p][d];
-    for (unsigned int i = 0; i < dim; ++i)
-      for (unsigned int j = i; j < dim; ++j)
-        patch.data(k++, 0) = particles.stress[p][i][j];
-    patch.data(k++, 0) = max_principal(particles.stress[p]);
+    const SymmetricTensor<2, dim> stress = effective_stress(particles, p);
+    for (const auto *s : {&stress, &particles.stress[p]})
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = i; j < dim; ++j)
+          patch.data(k++, 0) = (*s)[i][j];
+    patch.data(k++, 0) = max_principal(stress);
     patch.data(k++, 0) = particles.damage[p];
     patch.data(k++, 0) = particles.failed[p];
     patch.data(k++, 0) = particles.onset_strain[p];

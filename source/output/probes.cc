@@ -16,7 +16,9 @@ struct ProbeEntries
   void entries(EntryList &list)
   {
     list.add("Name", name, "probe", Patterns::Anything(),
-             "history.csv reports probe_<name>_sxx, ... .");
+             "history.csv reports probe_<name>_sxx, ...: the volume-weighted mean "
+             "effective stress (1 - damage) sigma of the particles within the "
+             "radius, failed ones counting with zero.");
     list.add("Point", point, dim == 2 ? "0, 0" : "0, 0, 0", Patterns::Anything(),
              "Centre of the probe (m).");
     list.add("Radius", radius, "0.01", Patterns::Double(0),
@@ -85,7 +87,7 @@ void Probes<dim>::write_row(std::ostream &out, const ParticleStore<dim> &store) 
     double w = 0;
     for (std::size_t p = 0; p < store.size(); ++p)
       if (store.position[p].distance(probe.point) <= probe.radius)
-        s += store.volume[p] * store.stress[p], w += store.volume[p];
+        s += store.volume[p] * effective_stress(store, p), w += store.volume[p];
     if (w > 0)
       s /= w;
     for (unsigned int i = 0; i < dim; ++i)

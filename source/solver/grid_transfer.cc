@@ -180,9 +180,7 @@ void GridTransfer<dim>::forces(const std::size_t b, const std::size_t e,
     const std::size_t o = p * conn.stride;
     // A full tensor: the symmetric one's element access costs more per node.
     const Tensor<2, dim> s =
-        (particles.failed[p] ? 0.0
-                             : (1 - particles.damage[p]) * particles.initial_volume[p]) *
-        particles.stress[p];
+        (stress_factor(particles, p) * particles.initial_volume[p]) * particles.stress[p];
     const unsigned int n = conn.n_nodes[p];
     if (gravity)
     {

@@ -21,7 +21,11 @@ public:
 
   explicit ParticleOutput(const std::string &directory);
 
-  /// Writes particles_<index>.vtu and updates particles.pvd.
+  /**
+   * Writes particles_<index>.vtu and updates particles.pvd. The fields "stress_*" and
+   * "max_principal_stress" are of the effective stress (effective_stress(), what the
+   * forces use: (1 - damage) sigma, 0 once failed); "undamaged_stress_*" is sigma.
+   */
   void write(const ParticleStore<dim> &particles, double time);
 
   /// The series written so far (for checkpoints), and its restoration on resume.

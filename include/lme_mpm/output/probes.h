@@ -12,7 +12,8 @@
 
 namespace lme_mpm
 {
-/// A point where history.csv reports the stress averaged over nearby particles.
+/// A point where history.csv reports the effective stress averaged over nearby
+/// particles.
 template <int dim>
 struct Probe
 {
@@ -23,16 +24,21 @@ struct Probe
 
 /**
  * The probes of "Output/Probe N": history.csv columns probe_<name>_sxx, ... with
- * the volume-weighted mean stress of the particles within each probe's radius.
+ * the volume-weighted mean effective stress (effective_stress(): (1 - damage) sigma,
+ * zero for failed particles) of the particles within each probe's radius.
  */
 template <int dim>
 class Probes
 {
 public:
+  /// Declares "Output/Probe 1" ... "Output/Probe n".
   static void declare_parameters(ParameterHandler &prm, unsigned int n_probes);
+  /// Reads the @p n_probes probes.
   void parse_parameters(ParameterHandler &prm, unsigned int n_probes);
 
+  /// The probes' columns of the history header, each preceded by a comma.
   void write_header(std::ostream &out) const;
+  /// The probes' mean effective stresses of one history row, each after a comma.
   void write_row(std::ostream &out, const ParticleStore<dim> &particles) const;
 
 private:

@@ -86,6 +86,24 @@ private:
   std::vector<std::size_t> offsets;
   std::vector<std::uint32_t> permutation;
 };
+
+/// The share of its stress particle @p p carries: 1 - damage, and 0 once failed.
+template <int dim>
+inline double stress_factor(const ParticleStore<dim> &particles, const std::size_t p)
+{
+  return particles.failed[p] ? 0.0 : 1 - particles.damage[p];
+}
+
+/**
+ * The effective stress of particle @p p, (1 - damage) sigma and 0 once failed: what
+ * the internal forces use, so what the output reports (`stress` is the undamaged one).
+ */
+template <int dim>
+inline SymmetricTensor<2, dim> effective_stress(const ParticleStore<dim> &particles,
+                                                const std::size_t p)
+{
+  return stress_factor(particles, p) * particles.stress[p];
+}
 } // namespace lme_mpm
 
 #endif
