@@ -1,17 +1,22 @@
 // Fracture: neighbourhood search, softening laws, irreversibility, and the energy and
 // strength checks on a bar pulled apart in tension (prm/tension_bar.prm).
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <gtest/gtest.h>
 
+#include <lme_mpm/fracture/fracture_coupling.h>
 #include <lme_mpm/fracture/fracture_model.h>
 #include <lme_mpm/fracture/neighbourhood.h>
 #include <lme_mpm/fracture/softening_law.h>
 
 #include "test_helpers.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <random>
 
@@ -19,8 +24,11 @@ using namespace lme_mpm;
 
 namespace
 {
+/// Random particles in the unit cube; with @p body, body(x) gives each one's body.
 template <int dim>
-void check_neighbourhood_against_brute_force(const unsigned int n, const double radius)
+void check_neighbourhood_against_brute_force(
+    const unsigned int n, const double radius,
+    const std::function<std::uint16_t(const Point<dim> &)> &body = {})
 {
   std::mt19937 rng(11 + dim);
   std::uniform_real_distribution<double> u(0, 1);
@@ -28,14 +36,17 @@ void check_neighbourhood_against_brute_force(const unsigned int n, const double 
   for (auto &p : x)
     for (unsigned int d = 0; d < dim; ++d)
       p[d] = u(rng);
+  std::vector<std::uint16_t> ids(n, 0);
+  if (body)
+    std::transform(x.begin(), x.end(), ids.begin(), body);
   Neighbourhood<dim> nb;
-  nb.build(x, radius);
+  nb.build(x, radius, body ? &ids : nullptr);
   ASSERT_EQ(nb.size(), n);
   for (unsigned int p = 0; p < n; ++p)
   {
     std::vector<std::uint32_t> brute;
     for (unsigned int q = 0; q < n; ++q)
-      if (x[p].distance(x[q]) <= radius)
+      if (x[p].distance(x[q]) <= radius && ids[p] == ids[q])
         brute.push_back(q);
     ASSERT_EQ(std::vector<std::uint32_t>(nb.begin(p), nb.end(p)), brute)
         << "particle " << p;
@@ -92,6 +103,37 @@ TEST(Neighbourhood, AgreesWithBruteForce2D)
 TEST(Neighbourhood, AgreesWithBruteForce3D)
 {
   check_neighbourhood_against_brute_force<3>(2000, 0.12);
+}
+
+TEST(Neighbourhood, StaysWithinTheParticlesOwnBody)
+{
+  // Two rectangles touching along x = 0.5, and a third body of scattered particles
+  // inside the second: no row holds a particle of another body.
+  check_neighbourhood_against_brute_force<2>(
+      3000, 0.04,
+      [](const Point<2> &p) {
+        return std::uint16_t(p[0] < 0.5 ? 0 : (std::fmod(p[1] * 100, 1) < 0.1 ? 7 : 1));
+      });
+  check_neighbourhood_against_brute_force<3>(
+      2000, 0.12, [](const Point<3> &p) { return std::uint16_t(p[2] < 0.5 ? 3 : 2); });
+  // One body throughout: every particle within the radius, as without body ids.
+  check_neighbourhood_against_brute_force<2>(3000, 0.04,
+                                             [](const Point<2> &) { return 5; });
+  // Thread-count independent.
+  std::vector<Point<2>> x;
+  std::vector<std::uint16_t> body;
+  for (unsigned int i = 0; i < 60; ++i)
+    for (unsigned int j = 0; j < 40; ++j)
+      x.emplace_back(0.01 * i, 0.01 * j), body.push_back(i < 30 ? 0 : 1);
+  Neighbourhood<2> one, two;
+  MultithreadInfo::set_thread_limit(1);
+  one.build(x, 0.025, &body);
+  MultithreadInfo::set_thread_limit(2);
+  two.build(x, 0.025, &body);
+  MultithreadInfo::set_thread_limit();
+  ASSERT_EQ(one.n_pairs(), two.n_pairs());
+  for (std::size_t p = 0; p < x.size(); ++p)
+    ASSERT_TRUE(std::equal(one.begin(p), one.end(p), two.begin(p), two.end(p))) << p;
 }
 
 TEST(Neighbourhood, BuildTimePerParticle)
@@ -275,6 +317,46 @@ TEST(Eigensoftening, DissipatesFractureEnergyWhateverItsOwnStressAtOnset)
                 << ": dissipated / G_F = " << P.dissipated[0] / G_F << "\n";
       EXPECT_NEAR(P.dissipated[0] / G_F, 1.0, 0.01) << name << " s0/f_t = " << ratio;
     }
+}
+
+TEST(Eigensoftening, OnsetAveragesOverTheParticlesOwnBodyOnly)
+{
+  // A platen (body 0) pressed against a specimen (body 1), the two touching along
+  // x = 0: the platen at ten times f_t, the specimen in tension below it. Within the
+  // neighbourhood (eps = 2 h = 0.02) the mixed average would exceed f_t; the
+  // specimen's own does not, so only the platen's particles reach onset.
+  ParameterHandler prm;
+  MaterialSet<2>::declare_parameters(prm, 1);
+  FractureCoupling<2>::declare_parameters(prm, 1);
+  prm.enter_subsection("Material 1");
+  prm.set("Density", "2400");
+  prm.enter_subsection("Fracture");
+  prm.set("Model", "eigensoftening");
+  prm.set("Tensile strength", "3e6");
+  prm.leave_subsection();
+  prm.leave_subsection();
+  MaterialSet<2> materials;
+  materials.parse_parameters(prm, 1, false);
+  FractureCoupling<2> coupling;
+  coupling.parse_parameters(prm, materials, 0.01, 1);
+
+  ParticleStore<2> store;
+  for (unsigned int i = 0; i < 8; ++i)
+    for (unsigned int j = 0; j < 8; ++j)
+    {
+      const unsigned int body = i < 4 ? 0 : 1;
+      const auto p = store.add(Point<2>(0.0025 + 0.005 * (double(i) - 4), 0.005 * j), 1.0,
+                               1.0, 0, body);
+      store.stress[p][0][0] = body == 0 ? 30e6 : 1e6;
+      store.strain[p][0][0] = store.stress[p][0][0] / 30e9;
+    }
+  coupling.update(store);
+  for (std::size_t p = 0; p < store.size(); ++p)
+    if (store.body_id[p] == 0)
+      EXPECT_GT(store.onset_strain[p], 0.0) << "platen particle " << p;
+    else
+      EXPECT_EQ(store.onset_strain[p], 0.0)
+          << "specimen particle " << p << " at x = " << store.position[p][0];
 }
 
 TEST(TensionBar, EigensofteningDissipatesFractureEnergyAtThreeResolutions)

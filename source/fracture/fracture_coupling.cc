@@ -81,7 +81,9 @@ void FractureCoupling<dim>::update(ParticleStore<dim> &store)
   for (const auto &f : models)
     if (f)
       radius = std::max(radius, f->epsilon());
-  neighbours.build(store.position, radius);
+  // Neighbours from the particle's own body only: a tool pressed against a specimen
+  // must not enter its onset or energy averages.
+  neighbours.build(store.position, radius, &store.body_id);
   // Snapshot of what neighbours read, so that no update sees another's new state.
   fields.max_principal_stress.resize(n);
   fields.energy_density.resize(n);

@@ -8,19 +8,26 @@
 namespace lme_mpm
 {
 template <int dim>
-void Neighbourhood<dim>::build(const std::vector<Point<dim>> &x, const double radius)
+void Neighbourhood<dim>::build(const std::vector<Point<dim>> &x, const double radius,
+                               const std::vector<std::uint16_t> *body)
 {
   const std::size_t n = x.size();
+  Assert(!body || body->size() == n, ExcDimensionMismatch(body->size(), n));
   offsets.assign(n + 1, 0);
   list.clear();
   if (n == 0)
     return;
 
-  // Cubes of side `radius` over the particles' bounding box.
+  // Cubes of side `radius` over the particles' bounding box; the same sweep finds
+  // whether there is more than one body, as a single body needs no comparisons.
   Point<dim> lo = x[0], hi = x[0];
-  for (const auto &p : x)
+  bool several_bodies = false;
+  for (std::size_t p = 0; p < n; ++p)
+  {
     for (unsigned int d = 0; d < dim; ++d)
-      lo[d] = std::min(lo[d], p[d]), hi[d] = std::max(hi[d], p[d]);
+      lo[d] = std::min(lo[d], x[p][d]), hi[d] = std::max(hi[d], x[p][d]);
+    several_bodies = several_bodies || (body && (*body)[p] != (*body)[0]);
+  }
   std::array<std::uint32_t, dim> n_bins;
   std::size_t total = 1;
   for (unsigned int d = 0; d < dim; ++d)
@@ -61,8 +68,9 @@ void Neighbourhood<dim>::build(const std::vector<Point<dim>> &x, const double ra
 
   const double r2 = radius * radius;
   // Visits the neighbours of p in increasing index order of cubes; within a cube the
-  // indices ascend. f(q) is called for each q within the radius.
-  auto for_neighbours = [&](const std::size_t p, auto &&f)
+  // indices ascend. f(q) is called for each q within the radius that same(p, q)
+  // accepts.
+  auto for_neighbours = [&](const std::size_t p, auto &&same, auto &&f)
   {
     std::array<std::uint32_t, dim> c;
     bin_index(x[p], c);
@@ -81,7 +89,7 @@ void Neighbourhood<dim>::build(const std::vector<Point<dim>> &x, const double ra
       }
       if (inside)
         for (std::uint32_t s = bin_start[b]; s < bin_start[b + 1]; ++s)
-          if (x[sorted[s]].distance_square(x[p]) <= r2)
+          if (x[sorted[s]].distance_square(x[p]) <= r2 && same(p, sorted[s]))
             f(sorted[s]);
       unsigned int d = 0;
       while (d < dim && ++k[d] > 1)
@@ -91,30 +99,40 @@ void Neighbourhood<dim>::build(const std::vector<Point<dim>> &x, const double ra
     }
   };
 
-  parallel::for_range(n,
-                      [&](const std::size_t b, const std::size_t e)
-                      {
-                        for (std::size_t p = b; p < e; ++p)
+  // Counts the rows, then fills and sorts them; `same` is a template argument so that
+  // a single body pays nothing for the body test.
+  auto fill = [&](auto &&same)
+  {
+    parallel::for_range(n,
+                        [&](const std::size_t b, const std::size_t e)
                         {
-                          std::size_t c = 0;
-                          for_neighbours(p, [&](std::uint32_t) { ++c; });
-                          offsets[p + 1] = c;
-                        }
-                      });
-  for (std::size_t p = 0; p < n; ++p)
-    offsets[p + 1] += offsets[p];
-  list.resize(offsets[n]);
-  parallel::for_range(
-      n,
-      [&](const std::size_t b, const std::size_t e)
-      {
-        for (std::size_t p = b; p < e; ++p)
+                          for (std::size_t p = b; p < e; ++p)
+                          {
+                            std::size_t c = 0;
+                            for_neighbours(p, same, [&](std::uint32_t) { ++c; });
+                            offsets[p + 1] = c;
+                          }
+                        });
+    for (std::size_t p = 0; p < n; ++p)
+      offsets[p + 1] += offsets[p];
+    list.resize(offsets[n]);
+    parallel::for_range(
+        n,
+        [&](const std::size_t b, const std::size_t e)
         {
-          std::size_t k = offsets[p];
-          for_neighbours(p, [&](const std::uint32_t q) { list[k++] = q; });
-          std::sort(list.begin() + offsets[p], list.begin() + offsets[p + 1]);
-        }
-      });
+          for (std::size_t p = b; p < e; ++p)
+          {
+            std::size_t k = offsets[p];
+            for_neighbours(p, same, [&](const std::uint32_t q) { list[k++] = q; });
+            std::sort(list.begin() + offsets[p], list.begin() + offsets[p + 1]);
+          }
+        });
+  };
+  if (several_bodies)
+    fill([&](const std::size_t p, const std::uint32_t q)
+         { return (*body)[p] == (*body)[q]; });
+  else
+    fill([](std::size_t, std::uint32_t) { return true; });
 }
 
 template class Neighbourhood<2>;
