@@ -56,21 +56,41 @@ void CrackFaceContact<dim>::on_rates(const double mass_tolerance)
         (nodal_displacement[I] / mI - nodal_displacement[K] / mK) * cracks.normal_of(J) >=
             0;
   }
-  equalise(transfer.nodes().rate, nullptr, 1.0);
+  std::vector<Tensor<1, dim>> &rate = transfer.nodes().rate;
+  equalise(
+      rate, [&](const unsigned int I) { return rate[I]; }, 1.0);
 }
 
 template <int dim>
-void CrackFaceContact<dim>::on_accelerations(const double scale)
+void CrackFaceContact<dim>::on_accelerations(const ExplicitNewmark &newmark,
+                                             const double dt)
 {
   if (!cracks.face_contact() || cracks.n_crack_nodes() == 0)
     return;
-  equalise(transfer.nodes().acceleration, &transfer.nodes().rate, scale);
+  // The trial end-of-step velocity is what the corrector gives the field, lumped on
+  // the node: (p + (1 - gamma) dt q) / m + gamma dt a, from the momentum p and the
+  // mass-weighted acceleration q, which contact leaves alone (at gamma = 1/2: the rate
+  // before on_rates plus gamma dt a). Making it equal on both fields makes the
+  // particles, which take gamma dt sum_I N_I a_I from the nodes, lose the faces'
+  // approach velocity; m_I da_I + m_K da_K = 0 keeps the momentum. Built from the rate
+  // on_rates has equalised, it would show no approach, and the approach velocity,
+  // with its kinetic energy, would stay in the particles.
+  NodalFields<dim> &nodes = transfer.nodes();
+  equalise(
+      nodes.acceleration,
+      [&](const unsigned int I)
+      {
+        return newmark.corrected_velocity(nodes.momentum[I] / nodes.mass[I],
+                                          nodes.mass_acceleration[I] / nodes.mass[I],
+                                          nodes.acceleration[I], dt);
+      },
+      newmark.gamma * dt);
 }
 
 template <int dim>
+template <class Velocity>
 void CrackFaceContact<dim>::equalise(std::vector<Tensor<1, dim>> &x,
-                                     const std::vector<Tensor<1, dim>> *rate,
-                                     const double scale) const
+                                     const Velocity &velocity, const double scale) const
 {
   const std::vector<double> &mass = transfer.nodes().mass;
   for (unsigned int J = 0; J < cracks.n_crack_nodes(); ++J)
@@ -80,8 +100,7 @@ void CrackFaceContact<dim>::equalise(std::vector<Tensor<1, dim>> &x,
     const unsigned int I = cracks.primary_of(J), K = cracks.field_of(J);
     const Tensor<1, dim> &n = cracks.normal_of(J);
     const double mI = mass[I], mK = mass[K];
-    const double vI = rate ? ((*rate)[I] + scale * x[I]) * n : x[I] * n;
-    const double vK = rate ? ((*rate)[K] + scale * x[K]) * n : x[K] * n;
+    const double vI = velocity(I) * n, vK = velocity(K) * n;
     if (!(vI > vK))
       continue;
     const double mean = (mI * vI + mK * vK) / (mI + mK);

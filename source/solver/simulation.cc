@@ -234,7 +234,7 @@ const std::vector<Tensor<1, dim>> *Simulation<dim>::correct_accelerations()
 {
   NodalFields<dim> &nodes = transfer.nodes();
   transfer.accelerations(mass_tolerance);
-  crack_contact.on_accelerations(newmark.gamma * dt);
+  crack_contact.on_accelerations(newmark, dt);
   const auto constrain = [&](std::vector<Tensor<1, dim>> &x)
   { constraints.impose_accelerations(x, nodes.layout, t + dt, derivative_step()); };
   constrain(nodes.acceleration);

@@ -2,6 +2,7 @@
 #define LME_MPM_SOLVER_CRACK_FACE_CONTACT_H
 
 #include <lme_mpm/fracture/crack_set.h>
+#include <lme_mpm/solver/explicit_newmark.h>
 #include <lme_mpm/solver/grid_transfer.h>
 
 #include <cstdint>
@@ -14,8 +15,11 @@ namespace lme_mpm
  * closed (the fields' mean displacements no longer open the crack) and approach
  * each other along the crack normal, both take the mass-weighted mean normal
  * velocity, which conserves momentum. Applied to the displacement rates, then to
- * the accelerations with the trial end-of-step velocity rate + gamma dt a, so that
- * faces pulled apart by their forces separate even when their rates were made equal.
+ * the accelerations with the trial end-of-step velocity that the Newmark corrector
+ * gives the field before contact, v + dt ((1 - gamma) a^n + gamma a) (at gamma = 1/2
+ * the rate before contact plus gamma dt a): the faces' end-of-step normal velocities
+ * become equal, so the particles lose their approach velocity, and faces pulled apart
+ * by their forces separate even when their rates were made equal.
  */
 template <int dim>
 class CrackFaceContact
@@ -30,13 +34,15 @@ public:
 
   /// Decides which faces are closed and makes their approaching rates equal.
   void on_rates(double mass_tolerance);
-  /// The same on the accelerations, for the trial velocity rate + @p scale a.
-  void on_accelerations(double scale);
+  /// The same on the accelerations, for the trial end-of-step velocity of the
+  /// corrector, from the momentum and mass-weighted acceleration before contact.
+  void on_accelerations(const ExplicitNewmark &newmark, double dt);
 
 private:
-  /// Changes x on the closed, approaching pairs; v = rate + scale x (rate: x itself
-  /// when @p rate is null and scale is 1).
-  void equalise(std::vector<Tensor<1, dim>> &x, const std::vector<Tensor<1, dim>> *rate,
+  /// Changes x on the closed, approaching pairs so that their normal velocities
+  /// velocity(I), which change by @p scale times the change of x, become equal.
+  template <class Velocity>
+  void equalise(std::vector<Tensor<1, dim>> &x, const Velocity &velocity,
                 double scale) const;
 
   const CrackSet<dim> &cracks;
