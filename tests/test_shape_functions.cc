@@ -423,17 +423,39 @@ void check_newton_iterations(const double gamma, const unsigned int seed)
   EXPECT_EQ(statistic(sf->statistics(), "lme_solves"), 3.0 * anywhere.size());
 }
 
-/// Nodes within R = h sqrt(-ln(TOL)/gamma) by brute force over the whole grid.
+/// Nodes whose support R_I = h_I sqrt(-ln(TOL)/gamma) holds x, by brute force over the
+/// whole grid.
 template <int dim>
 std::vector<unsigned int> nodes_in_radius(const BackgroundGrid<dim> &grid,
                                           const Point<dim> &x, const double gamma,
                                           const double tol = 1e-6)
 {
-  const double R = local_h(grid, x) * std::sqrt(-std::log(tol) / gamma);
+  const double rho = std::sqrt(-std::log(tol) / gamma);
+  bool uniform     = true;
+  for (unsigned int d = 0; d < dim; ++d)
+    uniform = uniform && grid.is_uniform(d);
   std::vector<unsigned int> nodes;
   for (unsigned int n = 0; n < grid.n_nodes(); ++n)
-    if (grid.node_point(n).distance(x) <= R)
+  {
+    // Uniform grid: the spacing. Graded: the node's own h_I, the smallest over
+    // directions of the mean of the two cells beside it.
+    double h = uniform ? local_h(grid, x) : std::numeric_limits<double>::max();
+    if (!uniform)
+    {
+      unsigned int rest = n;
+      for (unsigned int d = 0; d < dim; ++d)
+      {
+        const auto &c        = grid.coordinates(d);
+        const unsigned int i = rest % c.size();
+        rest /= c.size();
+        const double lo = i > 0 ? c[i] - c[i - 1] : c[1] - c[0];
+        const double hi = i + 1 < c.size() ? c[i + 1] - c[i] : lo;
+        h               = std::min(h, i > 0 && i + 1 < c.size() ? 0.5 * (lo + hi) : lo);
+      }
+    }
+    if (grid.node_point(n).distance(x) <= rho * h)
       nodes.push_back(n);
+  }
   return nodes;
 }
 
@@ -794,6 +816,68 @@ TEST(ShapeFunctions, LmeSupportMatchesRadius)
                           { check_support_is_ball<3>(g, gamma, 44); });
 }
 
+TEST(ShapeFunctions, LmeIsContinuousAcrossAGradingStep)
+{
+  // Cells halve in size across x = 0.8 and y = 0.8. Just left and just right of the
+  // line x = 0.8 (and below and above y = 0.8) the functions of every node, and their
+  // gradients, must agree to the change over the small offset: nodal beta_I is a
+  // property of the node, not of the cell the particle is in.
+  std::array<std::vector<double>, 2> steps;
+  for (auto &s : steps)
+  {
+    s.assign(8, 0.1);
+    s.insert(s.end(), 8, 0.05);
+  }
+  BackgroundGrid<2> grid;
+  grid.reinit(Point<2>(), steps);
+  const double delta = 1e-8;
+  std::mt19937 rng(61);
+  // Along the step, in the coarse cells of the other direction (where the fine cells
+  // are 0.05 x 0.1 and every node on the far side is within reach).
+  std::uniform_real_distribution<double> u(0.3, 0.75);
+  for (const double gamma : {1.8, 3.5})
+  {
+    SCOPED_TRACE("gamma " + std::to_string(gamma));
+    auto sf             = make<2>("lme", grid, lme_settings<2>(gamma, 1e-14));
+    double largest_jump = 0, largest_grad_jump = 0;
+    for (unsigned int k = 0; k < 40; ++k)
+    {
+      const unsigned int d = k % 2;
+      Point<2> x;
+      x[1 - d] = u(rng);
+      x[d]     = 0.8;
+      ParticleStore<2> ps;
+      for (const double side : {-delta, delta})
+      {
+        Point<2> xs = x;
+        xs[d] += side;
+        ps.add(xs, 1.0, 1e-3, 0, 0);
+      }
+      const auto conn = evaluate(*sf, ps);
+      // Value and gradient of every node on each side (zero outside the support).
+      std::map<unsigned int, std::array<std::pair<double, Tensor<1, 2>>, 2>> at;
+      for (unsigned int side = 0; side < 2; ++side)
+        for (unsigned int m = 0; m < conn.n_nodes[side]; ++m)
+        {
+          const std::size_t s     = side * conn.stride + m;
+          at[conn.nodes[s]][side] = {conn.N[s], conn.grad_N[s]};
+        }
+      for (const auto &[node, v] : at)
+      {
+        largest_jump = std::max(largest_jump, std::abs(v[1].first - v[0].first));
+        largest_grad_jump =
+            std::max(largest_grad_jump, 0.05 * (v[1].second - v[0].second).norm());
+      }
+    }
+    // A node at its cut-off radius enters with N of order the tolerance 1e-6; a cell's
+    // beta would make jumps of order 0.1.
+    EXPECT_LT(largest_jump, 1e-5);
+    EXPECT_LT(largest_grad_jump, 1e-4);
+    std::cout << "gamma " << gamma << ": largest jump of N " << largest_jump
+              << ", of h grad N " << largest_grad_jump << std::endl;
+  }
+}
+
 namespace
 {
 /// Particles 0.1 h from faces and corners (uGIMP boxes of half-width 0.1 h touch them).
@@ -1020,14 +1104,15 @@ TEST(ShapeFunctions, LmeFailuresAreLoud)
            0);
     EXPECT_NO_THROW(evaluate(*make<3>("lme", *grid3, s), ok));
   }
-  // ... and gamma 3.5 in a cell of aspect ratio 2.2 (h is its short side), near its
-  // short edge: no node within R on the far side.
+  // ... and gamma 6.8 in a cell of aspect ratio 2.2, near its short edge: the nodes on
+  // the far side (0.1 away) have h_I = 0.055 (their spacing along y) and reach only
+  // 1.43 h_I = 0.079.
   {
     auto graded = graded_grid<2>();
     // Cell (12, 0): spacings 0.11 x 0.05.
     const Point<2> x(graded->coordinates(0)[12] + 0.01, 0.025);
     EXPECT_NEAR(graded->spacing(0, 12) / graded->spacing(1, 0), 2.2, 1e-12);
-    expect_failure<2>(*make<2>("lme", *graded, lme_settings<2>(3.5)), x, v);
+    expect_failure<2>(*make<2>("lme", *graded, lme_settings<2>(6.8)), x, v);
     ParticleStore<2> ok;
     ok.add(x, 1.0, v, 0, 0);
     EXPECT_NO_THROW(evaluate(*make<2>("lme", *graded, lme_settings<2>(1.8)), ok));

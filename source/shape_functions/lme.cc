@@ -8,121 +8,13 @@
 #include <limits>
 #include <sstream>
 
-#ifdef LME_MPM_EIGEN_EXP
-#include <Eigen/Core>
-#endif
+#include "lme_kernels.h"
 
 namespace lme_mpm
 {
 namespace shape_functions
 {
-namespace
-{
-/// v[i] = exp(v[i] - shift) for i < n: the single largest cost of an LME evaluation.
-inline void exponentiate(double *v, const unsigned int n, const double shift)
-{
-#ifdef LME_MPM_EIGEN_EXP
-  // Eigen's packet exp: two (SSE2) or four (AVX) exponentials per instruction.
-  Eigen::Map<Eigen::ArrayXd> a(v, n);
-  a = (a - shift).exp();
-#else
-  for (unsigned int i = 0; i < n; ++i)
-    v[i] = std::exp(v[i] - shift);
-#endif
-}
-
-/**
- * Raw moments sum w_I, sum w_I y_I and the upper triangle of sum w_I y_I y_I^T. In 2D
- * the sums live in named scalars, which the compiler keeps in registers (summed into a
- * Tensor they went through memory on every node); the arithmetic and its order are the
- * generic loop's.
- */
-template <int dim>
-inline void raw_moments(const double *w, const Tensor<1, dim> *y, const unsigned int n,
-                        double &Z, Tensor<1, dim> &r, Tensor<2, dim> &J)
-{
-  if constexpr (dim == 2)
-  {
-    double z = 0, r0 = 0, r1 = 0, j00 = 0, j01 = 0, j11 = 0;
-    for (unsigned int I = 0; I < n; ++I)
-    {
-      const double e = w[I], y0 = y[I][0], y1 = y[I][1];
-      z += e;
-      r0 += e * y0;
-      j00 += e * y0 * y0;
-      j01 += e * y0 * y1;
-      r1 += e * y1;
-      j11 += e * y1 * y1;
-    }
-    Z = z, r[0] = r0, r[1] = r1, J[0][0] = j00, J[0][1] = j01, J[1][1] = j11;
-  }
-  else
-  {
-    Z = 0, r = 0, J = 0;
-    for (unsigned int I = 0; I < n; ++I)
-    {
-      const double e = w[I];
-      Z += e;
-      for (unsigned int i = 0; i < dim; ++i)
-      {
-        r[i] += e * y[I][i];
-        for (unsigned int j = i; j < dim; ++j)
-          J[i][j] += e * y[I][i] * y[I][j];
-      }
-    }
-  }
-}
-
-/// N_I = w_I / Z, r and J the mean and covariance of the y_I under them; returns log Z.
-template <int dim>
-inline double normalise(double *N, const Tensor<1, dim> *y, const unsigned int n,
-                        Tensor<1, dim> &r, Tensor<2, dim> &J)
-{
-  double Z;
-  raw_moments(N, y, n, Z, r, J);
-  const double inv_Z = 1 / Z;
-  for (unsigned int I = 0; I < n; ++I)
-    N[I] *= inv_Z;
-  r *= inv_Z;
-  for (unsigned int i = 0; i < dim; ++i)
-    for (unsigned int j = i; j < dim; ++j)
-      J[j][i] = J[i][j] = J[i][j] * inv_Z - r[i] * r[j];
-  return std::log(Z);
-}
-
-/// F = log Z, N, r = d log Z / d mu and J = d r / d mu at mu (scaled lambda).
-template <int dim>
-inline void evaluate(const double *a, const Tensor<1, dim> *y, const unsigned int n,
-                     const Tensor<1, dim> &mu, double *N, double &F, Tensor<1, dim> &r,
-                     Tensor<2, dim> &J)
-{
-  double f_max = -std::numeric_limits<double>::infinity();
-  for (unsigned int I = 0; I < n; ++I)
-  {
-    N[I]  = a[I] + mu * y[I];
-    f_max = std::max(f_max, N[I]);
-  }
-  exponentiate(N, n, f_max);
-  F = f_max + normalise(N, y, n, r, J);
-}
-
-/// evaluate() at mu + step from its results at mu, without exponentials: N_I(mu + step)
-/// is proportional to N_I(mu) exp(t), t = step . (y_I - r), here the cubic Taylor
-/// polynomial of exp(t); the normalisation absorbs the common factor exactly.
-template <int dim>
-inline void polynomial_step(const Tensor<1, dim> *y, const unsigned int n,
-                            const Tensor<1, dim> &step, double *N, double &F,
-                            Tensor<1, dim> &r, Tensor<2, dim> &J)
-{
-  for (unsigned int I = 0; I < n; ++I)
-  {
-    const double t = step * (y[I] - r);
-    N[I] *= 1 + t * (1 + t * (0.5 + t * (1. / 6)));
-  }
-  const double step_r = step * r; // log Z(mu + step) - log Z(mu) = step . r + log S
-  F += step_r + normalise(N, y, n, r, J);
-}
-} // namespace
+using namespace lme_kernels;
 
 /**
  * Local maximum-entropy approximants (Arroyo & Ortiz 2006):
@@ -132,21 +24,27 @@ inline void polynomial_step(const Tensor<1, dim> *y, const unsigned int n,
  * Kronecker-delta-like behaviour on the boundary, which is why the fracture
  * simulations use them; gamma trades locality (large) against smoothness (small).
  *
- * The weights are truncated where exp(-gamma |x - x_I|^2 / h^2) < tolerance, i.e.
- * at R = h sqrt(-ln(tolerance) / gamma), with h the smallest spacing of the cell
- * holding the particle. lambda is found by Newton's method on the convex log Z
- * (with a third-order correction near the solution) and a Wolfe line search (plain
- * Newton diverges for gamma >~ 6.8), in coordinates scaled by h, warm-started from
+ * On a uniform grid h is the spacing. On a graded grid each node carries its own
+ * beta_I = gamma / h_I^2 (Arroyo & Ortiz's nodal locality), h_I the smallest over
+ * directions of the node's spacing (BackgroundGrid::nodal_spacing), so N_I and
+ * grad N_I stay continuous where cells change size; a beta taken from the cell holding
+ * the particle would jump there. The exponent is then -beta_I |x - x_I|^2 +
+ * lambda . (x - x_I), and the gradient gains the terms of a node-dependent beta
+ * (gradients()).
+ *
+ * The weights are truncated where exp(-beta_I |x - x_I|^2) < tolerance, i.e. at
+ * R_I = h_I sqrt(-ln(tolerance) / gamma). lambda is found by Newton's method on the
+ * convex log Z (with a third-order correction near the solution) and a Wolfe line search
+ * (plain Newton diverges for gamma >~ 6.8), in coordinates scaled by h, warm-started from
  * the particle's previous multiplier (ParticleStore::lme_lambda) extrapolated along
  * its motion since then; steps that small are taken with a Taylor polynomial in place
  * of the exponentials, so a typical explicit step costs one exponential pass. Any
  * particle where the solve cannot succeed (outside the grid, not strictly inside the hull
  * of its nodes, no convergence) stops the run with ExcShapeFunctionFailure.
  *
- * Because h is the cell's smallest spacing, a particle needs R^2 >= max_d (s_d^2 +
- * sum_{e != d} (s_e / 2)^2) in a cell of spacings s to have nodes on every side:
- * gamma <= 11 in 2D and 9.2 in 3D on square cells with the default cut-off, less
- * on elongated cells of a graded grid.
+ * A particle needs a node within reach on every side: on square cells gamma <= 11 in
+ * 2D and 9.2 in 3D with the default cut-off, less on elongated cells of a graded grid
+ * (about R^2 >= max_d (s_d^2 + sum_{e != d} (s_e / 2)^2) for a cell of spacings s).
  */
 template <int dim>
 class LME : public ShapeFunction<dim>
@@ -195,7 +93,13 @@ public:
       }
       h_local_max = std::min(h_local_max, h_max_d[d]);
     }
-    R_max      = radius_over_h * h_local_max;
+    R_max = radius_over_h * h_local_max;
+    for (unsigned int d = 0; d < dim; ++d)
+      graded = graded || !grid.is_uniform(d);
+    if (graded)
+      for (unsigned int d = 0; d < dim; ++d)
+        for (unsigned int i = 0; i < grid.n_nodes_in(d); ++i)
+          node_h[d].push_back(grid.nodal_spacing(d, i));
     max_nodes  = 1;
     max_box_1d = 0;
     for (unsigned int d = 0; d < dim; ++d)
@@ -221,14 +125,16 @@ public:
   {
     Assert(conn.stride >= max_nodes, ExcInternalError());
     Scratch scratch;
-    scratch.y.resize(max_nodes), scratch.a.resize(max_nodes);
+    scratch.y.resize(max_nodes), scratch.a.resize(max_nodes), scratch.w.resize(max_nodes);
     for (unsigned int d = 0; d < dim; ++d)
-      scratch.y1d[d].resize(max_box_1d);
+      scratch.y1d[d].resize(max_box_1d), scratch.w1d[d].resize(max_box_1d);
     for (std::size_t p = begin; p < end; ++p)
     {
       const std::size_t row = p * conn.stride;
       double h;
-      const unsigned int n = set_up(particles, p, &conn.nodes[row], scratch, h);
+      const unsigned int n =
+          graded ? set_up<true>(particles, p, &conn.nodes[row], scratch, h)
+                 : set_up<false>(particles, p, &conn.nodes[row], scratch, h);
       const Solution solution =
           solve(particles, p, n, warm_start(particles, p, h), &conn.N[row], scratch);
       gradients(particles, p, n, h, scratch, &conn.N[row], solution, &conn.grad_N[row]);
@@ -264,8 +170,10 @@ private:
   struct Scratch
   {
     std::vector<Tensor<1, dim>> y; ///< scaled offsets y_I = (x - x_I) / h of the nodes
-    std::vector<double> a;         ///< fixed part -gamma |y_I|^2 of their exponents
+    std::vector<double> a;         ///< fixed part -gamma w_I |y_I|^2 of their exponents
+    std::vector<double> w; ///< w_I = beta_I h^2 / gamma = (h / h_I)^2 (graded grids)
     std::array<std::vector<double>, dim> y1d; ///< (x_d - c_d[i]) / h in the index box
+    std::array<std::vector<double>, dim> w1d; ///< (h / nodal spacing)^2 there (graded)
     std::uint64_t solves = 0, iterations = 0, evaluations = 0, cheap = 0;
     unsigned int max_iterations = 0;
   };
@@ -289,9 +197,13 @@ private:
                                         point_to_string(particles.position[p]), s.str()));
   }
 
-  /// Set-up of particle p: h, the smallest spacing of its cell, and the n nodes within
-  /// R = radius_over_h h (returns n) into @p nodes, their y_I and a_I into @p scratch.
-  /// Stops the run if x is outside the grid or not strictly inside the nodes' hull.
+  /// Set-up of particle p: h, the smallest spacing of its cell (the unit of the scaled
+  /// coordinates), and the n nodes whose support holds x (returns n) into @p nodes,
+  /// their y_I, a_I and w_I into @p scratch. On a uniform grid (Graded false) the
+  /// supports all have radius R = radius_over_h h; on a graded one node I reaches
+  /// R_I = radius_over_h h_I. Stops the run if x is outside the grid or not strictly
+  /// inside the nodes' hull.
+  template <bool Graded>
   unsigned int set_up(const ParticleStore<dim> &particles, const std::size_t p,
                       unsigned int *nodes, Scratch &scratch, double &h) const
   {
@@ -303,11 +215,14 @@ private:
     for (unsigned int d = 0; d < dim; ++d)
       h = std::min(h, grid.spacing(d, cell[d]));
     const double inv_h = 1 / h;
-    const double R     = radius_over_h * h;
-    const double R2    = radius_over_h * radius_over_h;
-    auto &y1d          = scratch.y1d;
+    // The widest support that can reach x: R_max bounds every R_I.
+    const double R  = Graded ? R_max : radius_over_h * h;
+    const double R2 = radius_over_h * radius_over_h;
+    auto &y1d       = scratch.y1d;
+    auto &w1d       = scratch.w1d;
 
-    // Index box of the nodes within [x - R, x + R] in each direction.
+    // Index box of the nodes within [x - R, x + R] in each direction; on a graded grid
+    // trimmed at both ends to nodes that reach x along d (h_I <= its spacing along d).
     for (unsigned int d = 0; d < dim; ++d)
     {
       const auto &c   = grid.coordinates(d);
@@ -321,20 +236,37 @@ private:
       }
       if (hi < c.back())
         grid.locate(hi, d, i_hi);
+      if constexpr (Graded)
+      {
+        const auto reaches = [&](const unsigned int i)
+        { return std::abs(x[d] - c[i]) <= radius_over_h * node_h[d][i]; };
+        while (i_lo < i_hi && !reaches(i_lo))
+          ++i_lo;
+        while (i_hi > i_lo && !reaches(i_hi))
+          --i_hi;
+      }
       first[d] = i_lo;
       count[d] = i_hi + 1 - i_lo;
       Assert(count[d] <= max_box_1d, ExcInternalError());
       for (unsigned int k = 0; k < count[d]; ++k)
+      {
         y1d[d][k] = (x[d] - c[i_lo + k]) * inv_h;
+        if constexpr (Graded)
+        {
+          const double r = h / node_h[d][i_lo + k];
+          w1d[d][k]      = r * r;
+        }
+      }
     }
 
-    // Candidates inside the ball, in increasing node index order.
+    // Candidates inside their supports, in increasing node index order. q is |y_I|^2
+    // weighted by w_I = (h / h_I)^2, with h_I the smallest of the node's spacings.
     unsigned int n = 0;
     Tensor<1, dim> y_min, y_max, yI;
     for (unsigned int d = 0; d < dim; ++d)
       y_min[d] = std::numeric_limits<double>::infinity(), y_max[d] = -y_min[d];
-    const auto keep =
-        [&](const unsigned int node, const Tensor<1, dim> &yn, const double q)
+    const auto keep = [&](const unsigned int node, const Tensor<1, dim> &yn,
+                          const double q, const double w)
     {
       // Cannot happen (max_nodes bounds the ball); guards the connectivity row.
       if (n == max_nodes)
@@ -342,25 +274,35 @@ private:
       nodes[n]     = node;
       scratch.y[n] = yn;
       scratch.a[n] = -gamma * q;
+      scratch.w[n] = w;
       for (unsigned int d = 0; d < dim; ++d)
         y_min[d] = std::min(y_min[d], yn[d]), y_max[d] = std::max(y_max[d], yn[d]);
       ++n;
+    };
+    // Weight of a node from those of its rows: the largest, as h_I is the smallest.
+    const auto weight = [&](const unsigned int d, const unsigned int k)
+    {
+      if constexpr (Graded)
+        return w1d[d][k];
+      else
+        return 1.0;
     };
     if constexpr (dim == 2)
     {
       for (unsigned int j = 0; j < count[1]; ++j)
       {
         const double qj = y1d[1][j] * y1d[1][j];
-        if (qj > R2)
+        if (qj * weight(1, j) > R2)
           continue;
         const unsigned int row = (first[1] + j) * grid.node_stride(1) + first[0];
         for (unsigned int i = 0; i < count[0]; ++i)
         {
-          const double q = y1d[0][i] * y1d[0][i] + qj;
+          const double w = std::max(weight(0, i), weight(1, j));
+          const double q = w * (y1d[0][i] * y1d[0][i] + qj);
           if (q <= R2)
           {
             yI[0] = y1d[0][i], yI[1] = y1d[1][j];
-            keep(row + i, yI, q);
+            keep(row + i, yI, q, w);
           }
         }
       }
@@ -370,22 +312,24 @@ private:
       for (unsigned int k = 0; k < count[2]; ++k)
       {
         const double qk = y1d[2][k] * y1d[2][k];
-        if (qk > R2)
+        if (qk * weight(2, k) > R2)
           continue;
         for (unsigned int j = 0; j < count[1]; ++j)
         {
-          const double qj = y1d[1][j] * y1d[1][j] + qk;
-          if (qj > R2)
+          const double qj  = y1d[1][j] * y1d[1][j] + qk;
+          const double wjk = std::max(weight(1, j), weight(2, k));
+          if (qj * wjk > R2)
             continue;
           const unsigned int row = (first[2] + k) * grid.node_stride(2) +
                                    (first[1] + j) * grid.node_stride(1) + first[0];
           for (unsigned int i = 0; i < count[0]; ++i)
           {
-            const double q = y1d[0][i] * y1d[0][i] + qj;
+            const double w = std::max(weight(0, i), wjk);
+            const double q = w * (y1d[0][i] * y1d[0][i] + qj);
             if (q <= R2)
             {
               yI[0] = y1d[0][i], yI[1] = y1d[1][j], yI[2] = y1d[2][k];
-              keep(row + i, yI, q);
+              keep(row + i, yI, q, w);
             }
           }
         }
@@ -397,7 +341,8 @@ private:
       if (!(y_min[d] < 0 && y_max[d] > 0))
       {
         fail(particles, p, "the particle is not strictly inside the convex hull of its ",
-             n, " nodes within R = ", R, " (no node on one side along direction ", d,
+             n, " nodes within reach (R = ", radius_over_h * h,
+             " for the cell's spacing; no node on one side along direction ", d,
              "): it lies on the grid boundary, or the support is too small for its ",
              "cell (lower 'LME gamma' = ", gamma, " or 'LME tolerance')");
       }
@@ -538,11 +483,37 @@ private:
     const double inv_h         = 1 / h;
     const Tensor<2, dim> unit  = unit_symmetric_tensor<dim>();
     const Tensor<2, dim> J_inv = invert(solution.J);
+    const Tensor<1, dim> &r    = solution.r;
+    particles.lme_lambda[p]    = solution.mu * inv_h;
+    particles.lme_position[p]  = particles.position[p];
+    if (!graded)
+    {
+      for (unsigned int I = 0; I < n; ++I)
+        gradN[I] = (-N[I] * inv_h) * (J_inv * (scratch.y[I] - r));
+      particles.lme_lambda_rate[p] = (2 * gamma * unit - J_inv) * (inv_h * inv_h);
+      return;
+    }
+    // Nodal beta_I = gamma w_I / h^2. With s = sum N_I w_I y_I and C = sum N_I w_I y_I
+    // (x) y_I - r (x) s, keeping r(x, mu(x)) fixed gives the scaled multiplier's rate
+    // M = d mu / d(x / h) = -J^-1 (I - 2 gamma C), and
+    //   h grad N_I = N_I (-2 gamma w_I y_I + 2 gamma s + M^T (y_I - r)),
+    // which sums to zero exactly and reproduces linear fields' gradients. With all
+    // w_I = 1 it is the uniform form above.
+    Tensor<1, dim> s;
+    Tensor<2, dim> C;
     for (unsigned int I = 0; I < n; ++I)
-      gradN[I] = (-N[I] * inv_h) * (J_inv * (scratch.y[I] - solution.r));
-    particles.lme_lambda[p]      = solution.mu * inv_h;
-    particles.lme_position[p]    = particles.position[p];
-    particles.lme_lambda_rate[p] = (2 * gamma * unit - J_inv) * (inv_h * inv_h);
+    {
+      const Tensor<1, dim> v = (N[I] * scratch.w[I]) * scratch.y[I];
+      s += v;
+      C += outer_product(v, scratch.y[I]);
+    }
+    C -= outer_product(r, s);
+    const Tensor<2, dim> M  = -(J_inv * (unit - (2 * gamma) * C));
+    const Tensor<2, dim> Mt = transpose(M);
+    for (unsigned int I = 0; I < n; ++I)
+      gradN[I] = (N[I] * inv_h) * ((-2 * gamma * scratch.w[I]) * scratch.y[I] +
+                                   (2 * gamma) * s + Mt * (scratch.y[I] - r));
+    particles.lme_lambda_rate[p] = M * (inv_h * inv_h);
   }
 
   /**
@@ -580,6 +551,8 @@ private:
   const unsigned int max_iterations;
   const double radius_over_h; ///< support radius R / h
   double R_max = 0;           ///< largest support radius on this grid
+  bool graded  = false;       ///< nodal beta_I (any direction not uniform)
+  std::array<std::vector<double>, dim> node_h; ///< nodal spacings (graded grids)
   unsigned int max_nodes;
   unsigned int max_box_1d;
 

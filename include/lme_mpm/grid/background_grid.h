@@ -48,6 +48,18 @@ public:
   {
     return coords[d][cell_i + 1] - coords[d][cell_i];
   }
+  /// Spacing at node @p node_i along d: the mean of the cells on either side of it
+  /// (the one cell at an end). Node-based lengths stay continuous where cells change
+  /// size, unlike the size of the cell a point happens to lie in.
+  double nodal_spacing(const unsigned int d, const unsigned int node_i) const
+  {
+    const auto &c = coords[d];
+    if (node_i == 0)
+      return c[1] - c[0];
+    if (node_i + 1 == c.size())
+      return c[node_i] - c[node_i - 1];
+    return 0.5 * (c[node_i + 1] - c[node_i - 1]);
+  }
   double min_spacing() const { return h_min; }
   /// The largest cell size in any direction.
   double max_spacing() const { return h_max; }

@@ -1,0 +1,134 @@
+#ifndef LME_MPM_SHAPE_FUNCTIONS_LME_KERNELS_H
+#define LME_MPM_SHAPE_FUNCTIONS_LME_KERNELS_H
+
+// The arithmetic kernels of the local max-ent Newton solve (lme.cc): the exponential
+// pass, the moments of the weights and the polynomial step. Kept apart from the
+// shape function class so that the solve's numerics can be read (and benchmarked)
+// on their own.
+
+#include <deal.II/base/tensor.h>
+
+#include <cmath>
+#include <limits>
+
+#ifdef LME_MPM_EIGEN_EXP
+#include <Eigen/Core>
+#endif
+
+namespace lme_mpm
+{
+namespace shape_functions
+{
+namespace lme_kernels
+{
+using namespace dealii;
+
+/// v[i] = exp(v[i] - shift) for i < n: the single largest cost of an LME evaluation.
+inline void exponentiate(double *v, const unsigned int n, const double shift)
+{
+#ifdef LME_MPM_EIGEN_EXP
+  // Eigen's packet exp: two (SSE2) or four (AVX) exponentials per instruction.
+  Eigen::Map<Eigen::ArrayXd> a(v, n);
+  a = (a - shift).exp();
+#else
+  for (unsigned int i = 0; i < n; ++i)
+    v[i] = std::exp(v[i] - shift);
+#endif
+}
+
+/**
+ * Raw moments sum w_I, sum w_I y_I and the upper triangle of sum w_I y_I y_I^T. In 2D
+ * the sums live in named scalars, which the compiler keeps in registers (summed into a
+ * Tensor they went through memory on every node); the arithmetic and its order are the
+ * generic loop's.
+ */
+template <int dim>
+inline void raw_moments(const double *w, const Tensor<1, dim> *y, const unsigned int n,
+                        double &Z, Tensor<1, dim> &r, Tensor<2, dim> &J)
+{
+  if constexpr (dim == 2)
+  {
+    double z = 0, r0 = 0, r1 = 0, j00 = 0, j01 = 0, j11 = 0;
+    for (unsigned int I = 0; I < n; ++I)
+    {
+      const double e = w[I], y0 = y[I][0], y1 = y[I][1];
+      z += e;
+      r0 += e * y0;
+      j00 += e * y0 * y0;
+      j01 += e * y0 * y1;
+      r1 += e * y1;
+      j11 += e * y1 * y1;
+    }
+    Z = z, r[0] = r0, r[1] = r1, J[0][0] = j00, J[0][1] = j01, J[1][1] = j11;
+  }
+  else
+  {
+    Z = 0, r = 0, J = 0;
+    for (unsigned int I = 0; I < n; ++I)
+    {
+      const double e = w[I];
+      Z += e;
+      for (unsigned int i = 0; i < dim; ++i)
+      {
+        r[i] += e * y[I][i];
+        for (unsigned int j = i; j < dim; ++j)
+          J[i][j] += e * y[I][i] * y[I][j];
+      }
+    }
+  }
+}
+
+/// N_I = w_I / Z, r and J the mean and covariance of the y_I under them; returns log Z.
+template <int dim>
+inline double normalise(double *N, const Tensor<1, dim> *y, const unsigned int n,
+                        Tensor<1, dim> &r, Tensor<2, dim> &J)
+{
+  double Z;
+  raw_moments(N, y, n, Z, r, J);
+  const double inv_Z = 1 / Z;
+  for (unsigned int I = 0; I < n; ++I)
+    N[I] *= inv_Z;
+  r *= inv_Z;
+  for (unsigned int i = 0; i < dim; ++i)
+    for (unsigned int j = i; j < dim; ++j)
+      J[j][i] = J[i][j] = J[i][j] * inv_Z - r[i] * r[j];
+  return std::log(Z);
+}
+
+/// F = log Z, N, r = d log Z / d mu and J = d r / d mu at mu (scaled lambda).
+template <int dim>
+inline void evaluate(const double *a, const Tensor<1, dim> *y, const unsigned int n,
+                     const Tensor<1, dim> &mu, double *N, double &F, Tensor<1, dim> &r,
+                     Tensor<2, dim> &J)
+{
+  double f_max = -std::numeric_limits<double>::infinity();
+  for (unsigned int I = 0; I < n; ++I)
+  {
+    N[I]  = a[I] + mu * y[I];
+    f_max = std::max(f_max, N[I]);
+  }
+  exponentiate(N, n, f_max);
+  F = f_max + normalise(N, y, n, r, J);
+}
+
+/// evaluate() at mu + step from its results at mu, without exponentials: N_I(mu + step)
+/// is proportional to N_I(mu) exp(t), t = step . (y_I - r), here the cubic Taylor
+/// polynomial of exp(t); the normalisation absorbs the common factor exactly.
+template <int dim>
+inline void polynomial_step(const Tensor<1, dim> *y, const unsigned int n,
+                            const Tensor<1, dim> &step, double *N, double &F,
+                            Tensor<1, dim> &r, Tensor<2, dim> &J)
+{
+  for (unsigned int I = 0; I < n; ++I)
+  {
+    const double t = step * (y[I] - r);
+    N[I] *= 1 + t * (1 + t * (0.5 + t * (1. / 6)));
+  }
+  const double step_r = step * r; // log Z(mu + step) - log Z(mu) = step . r + log S
+  F += step_r + normalise(N, y, n, r, J);
+}
+} // namespace lme_kernels
+} // namespace shape_functions
+} // namespace lme_mpm
+
+#endif
