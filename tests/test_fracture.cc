@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <lme_mpm/fracture/crack_set.h>
 #include <lme_mpm/fracture/fracture_coupling.h>
 #include <lme_mpm/fracture/fracture_model.h>
 #include <lme_mpm/fracture/neighbourhood.h>
@@ -136,6 +137,66 @@ TEST(Neighbourhood, StaysWithinTheParticlesOwnBody)
     ASSERT_TRUE(std::equal(one.begin(p), one.end(p), two.begin(p), two.end(p))) << p;
 }
 
+TEST(Neighbourhood, StaysOnItsSideOfAnExplicitCrack)
+{
+  // A crack with a kink across part of the unit square: no row holds a particle whose
+  // straight line to the particle crosses it, unless the path round an end of the
+  // crack is within the radius (near a tip); every other pair within the radius is
+  // kept (checked against a brute-force segment intersection).
+  const std::vector<std::vector<Point<2>>> lines = {
+      {Point<2>(-0.1, 0.5), Point<2>(0.4, 0.5), Point<2>(0.7, 0.62)},
+      {Point<2>(0.2, 0.1), Point<2>(0.2, 0.3)}};
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point<2>> x(3000);
+  for (auto &p : x)
+    p = Point<2>(u(rng), u(rng));
+  const double radius = 0.05;
+  CrackSegmentBins<2> bins;
+  bins.build(lines, radius);
+  Neighbourhood<2> nb;
+  nb.build(x, radius, nullptr,
+           [&](const std::size_t p, const std::size_t q)
+           { return bins.separates(x[p], x[q]); });
+  const auto cross =
+      [](const Point<2> &a, const Point<2> &b, const Point<2> &c, const Point<2> &d)
+  {
+    const auto side = [](const Point<2> &o, const Point<2> &e, const Point<2> &f)
+    { return (e[0] - o[0]) * (f[1] - o[1]) - (e[1] - o[1]) * (f[0] - o[0]); };
+    return side(a, b, c) * side(a, b, d) < 0 && side(c, d, a) * side(c, d, b) < 0;
+  };
+  std::size_t cut = 0, round_tip = 0;
+  for (std::size_t p = 0; p < x.size(); ++p)
+  {
+    std::vector<std::uint32_t> brute;
+    for (std::size_t q = 0; q < x.size(); ++q)
+    {
+      if (x[p].distance(x[q]) > radius)
+        continue;
+      bool cut_off = false, near_tip = false;
+      for (const auto &line : lines)
+        for (std::size_t k = 0; k + 1 < line.size(); ++k)
+          if (cross(x[p], x[q], line[k], line[k + 1]))
+          {
+            const double detour =
+                std::min(x[p].distance(line.front()) + line.front().distance(x[q]),
+                         x[p].distance(line.back()) + line.back().distance(x[q]));
+            cut_off  = cut_off || detour > radius;
+            near_tip = near_tip || detour <= radius;
+          }
+      if (cut_off)
+        ++cut;
+      else
+        brute.push_back(q);
+      round_tip += near_tip && !cut_off;
+    }
+    ASSERT_EQ(std::vector<std::uint32_t>(nb.begin(p), nb.end(p)), brute)
+        << "particle " << p;
+  }
+  EXPECT_GT(cut, 1000u);     // the crack does cut pairs
+  EXPECT_GT(round_tip, 20u); // and keeps some round its tips
+}
+
 TEST(Neighbourhood, BuildTimePerParticle)
 {
   // 2D, 4 particles per cell of 1 mm, eps = 2 mm (C_eps = 2): about 50 neighbours each.
@@ -235,7 +296,7 @@ TEST(Eigensoftening, UnloadingDoesNotHeal)
   ParticleStore<2> P;
   P.add(Point<2>(0, 0), 1.0, 1.0, 0, 0);
   Neighbourhood<2> nb;
-  nb.build(P.position, model->epsilon());
+  nb.build(P.position, model->epsilon(0.01));
   FractureFields F;
   auto load = [&](const double strain)
   {
@@ -295,7 +356,7 @@ TEST(Eigensoftening, DissipatesFractureEnergyWhateverItsOwnStressAtOnset)
       ParticleStore<2> P;
       P.add(Point<2>(0, 0), 1.0, h, 0, 0);
       Neighbourhood<2> nb;
-      nb.build(P.position, model->epsilon());
+      nb.build(P.position, model->epsilon(0.01));
       const double s0   = ratio * f_t;
       P.onset_strain[0] = s0 / E;
       P.onset_stress[0] = s0;
@@ -337,8 +398,11 @@ TEST(Eigensoftening, OnsetAveragesOverTheParticlesOwnBodyOnly)
   prm.leave_subsection();
   MaterialSet<2> materials;
   materials.parse_parameters(prm, 1, false);
+  BackgroundGrid<2> grid; // uniform, h = 0.01
+  grid.reinit(Point<2>(-0.1, -0.1),
+              {{std::vector<double>(20, 0.01), std::vector<double>(20, 0.01)}});
   FractureCoupling<2> coupling;
-  coupling.parse_parameters(prm, materials, 0.01, 1);
+  coupling.parse_parameters(prm, materials, grid, 1);
 
   ParticleStore<2> store;
   for (unsigned int i = 0; i < 8; ++i)
@@ -376,6 +440,38 @@ TEST(TensionBar, EigensofteningDissipatesFractureEnergyAtThreeResolutions)
       EXPECT_NEAR(r.peak_stress / 3e6, 1.0, 0.05) << law << " h " << h;
       EXPECT_GT(r.failed, 0) << law << " h " << h;
     }
+}
+
+TEST(TensionBar, GradedGridDissipatesFractureEnergyInCoarseAndFineCells)
+{
+  // The bar on a grid with 2.5 mm cells for x < 0.05 m and 5 mm cells beyond (5 mm
+  // high, so every cell's short side is along the bar), the one-cell weak zone in a
+  // fine cell or in a coarse one. With the band width and eps tied to the grid's
+  // smallest spacing, the crack in a coarse cell dissipated 2 G_F.
+  for (const bool coarse : {false, true})
+  {
+    const double h = coarse ? 0.005 : 0.0025, x0 = coarse ? 0.07 : 0.025;
+    const std::string zone =
+        "rectangle(" + std::to_string(x0) + ", 0, " + std::to_string(x0 + h) + ", 0.005)";
+    const std::string dir =
+        lme_mpm_test::scratch(coarse ? "graded_bar_coarse" : "graded_bar_fine");
+    std::ostringstream quiet;
+    const auto s       = run_parameter_file(lme_mpm_test::scene("tension_bar.prm"),
+                                            {"Grid/Step sizes x=20*0.0025, 10*0.005",
+                                             "Grid/Step sizes y=0.005", "Body 1/Shape=" + zone,
+                                             "Body 2/Holes=" + zone, "Output/Directory=" + dir,
+                                             "Output/Verbosity=0"},
+                                            quiet);
+    const auto history = lme_mpm_test::read_history(dir);
+    const auto &names  = history.first;
+    const auto i_diss =
+        std::find(names.begin(), names.end(), "dissipated_energy") - names.begin();
+    const double per_area = history.second.back()[i_diss] / (0.005 * 0.005);
+    std::cout << (coarse ? "coarse" : "fine") << " cell (h = " << h << "): dissipated "
+              << per_area << " J/m^2" << std::endl;
+    EXPECT_NEAR(per_area / 50.0, 1.0, 0.02) << (coarse ? "coarse" : "fine");
+    EXPECT_GT(s.at("failed_particles"), 0);
+  }
 }
 
 TEST(TensionBar, FixedBandWidthIsMeshDependent)

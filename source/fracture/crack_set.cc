@@ -204,6 +204,107 @@ bool CrackSet<dim>::crosses(const Point<dim> &p, const Point<dim> &q,
 }
 
 template <int dim>
+void CrackSegmentBins<dim>::build(const std::vector<std::vector<Point<dim>>> &all,
+                                  const double radius)
+{
+  lines = &all;
+  bins.clear();
+  side = radius;
+  if (all.empty() || !(radius > 0))
+    return;
+  const auto &lines = all;
+  Point<dim> lo = lines[0][0], hi = lo;
+  for (const auto &line : lines)
+    for (const auto &x : line)
+      for (unsigned int d = 0; d < dim; ++d)
+        lo[d] = std::min(lo[d], x[d]), hi[d] = std::max(hi[d], x[d]);
+  lower            = lo;
+  std::size_t size = 1;
+  for (unsigned int d = 0; d < dim; ++d)
+  {
+    n_bins[d] = static_cast<unsigned int>(std::min(1e4, (hi[d] - lo[d]) / radius)) + 1;
+    size *= n_bins[d];
+  }
+  bins.resize(size);
+  // Every bin a segment's bounding box overlaps holds it.
+  for (unsigned int l = 0; l < lines.size(); ++l)
+    for (unsigned int s = 0; s + 1 < lines[l].size(); ++s)
+    {
+      std::array<unsigned int, dim> first, last;
+      for (unsigned int d = 0; d < dim; ++d)
+      {
+        const double a = lines[l][s][d] - lo[d], b = lines[l][s + 1][d] - lo[d];
+        first[d] = std::min(n_bins[d] - 1, unsigned(std::min(a, b) / radius));
+        last[d]  = std::min(n_bins[d] - 1, unsigned(std::max(a, b) / radius));
+      }
+      std::array<unsigned int, dim> k = first;
+      while (true)
+      {
+        std::size_t b = 0, stride = 1;
+        for (unsigned int d = 0; d < dim; ++d)
+          b += k[d] * stride, stride *= n_bins[d];
+        bins[b].emplace_back(l, s);
+        unsigned int d = 0;
+        while (d < dim && ++k[d] > last[d])
+          k[d] = first[d], ++d;
+        if (d == dim)
+          break;
+      }
+    }
+}
+
+template <int dim>
+bool CrackSegmentBins<dim>::separates(const Point<dim> &p, const Point<dim> &q) const
+{
+  if (bins.empty())
+    return false;
+  const auto &lines = *this->lines;
+  // A segment that crosses p -> q holds a point of it, so it is in one of the (at
+  // most 2^dim) bins the pair's bounding box overlaps.
+  std::array<unsigned int, dim> first, last;
+  for (unsigned int d = 0; d < dim; ++d)
+  {
+    const double a = std::min(p[d], q[d]) - lower[d];
+    const double b = std::max(p[d], q[d]) - lower[d];
+    if (b < 0 || a > n_bins[d] * side)
+      return false;
+    first[d] = std::min(n_bins[d] - 1, unsigned(std::max(0.0, a) / side));
+    last[d]  = std::min(n_bins[d] - 1, unsigned(b / side));
+  }
+  std::array<unsigned int, dim> k = first;
+  while (true)
+  {
+    std::size_t b = 0, stride = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      b += k[d] * stride, stride *= n_bins[d];
+    for (const auto &[l, s] : bins[b])
+    {
+      // The crosses() test: p, q on different sides of a -> b (a point on the line
+      // counts as left), and a, b not both strictly on one side of p -> q.
+      const Point<dim> &a = lines[l][s], &e = lines[l][s + 1];
+      if ((orientation(a, e, p) >= 0) == (orientation(a, e, q) >= 0))
+        continue;
+      const double oa = orientation(p, q, a), ob = orientation(p, q, e);
+      if (!((oa <= 0 && ob >= 0) || (oa >= 0 && ob <= 0)))
+        continue;
+      // Crossed: still connected if the path round an end of the crack is within the
+      // radius (near a tip the material joins the two faces).
+      const Point<dim> &first = lines[l].front(), &last = lines[l].back();
+      const double detour = std::min(p.distance(first) + first.distance(q),
+                                     p.distance(last) + last.distance(q));
+      if (detour > side)
+        return true;
+    }
+    unsigned int d = 0;
+    while (d < dim && ++k[d] > last[d])
+      k[d] = first[d], ++d;
+    if (d == dim)
+      break;
+  }
+  return false;
+}
+
+template <int dim>
 void CrackSet<dim>::separate(const ParticleStore<dim> &particles,
                              const BackgroundGrid<dim> &grid, Connectivity<dim> &conn,
                              const std::size_t begin, const std::size_t end,
@@ -307,4 +408,6 @@ void CrackSet<dim>::restore(std::vector<std::vector<Point<dim>>> saved)
 
 template class CrackSet<2>;
 template class CrackSet<3>;
+template class CrackSegmentBins<2>;
+template class CrackSegmentBins<3>;
 } // namespace lme_mpm

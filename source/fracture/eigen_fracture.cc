@@ -36,8 +36,9 @@ public:
                       "value (linear 2 G_F/f_t, bilinear 3.6 G_F/f_t).");
     prm.declare_entry("Band width", "0", Patterns::Double(0),
                       "h_eps (m), the width the crack opening is spread over; 0 ties it "
-                      "to the grid spacing h (crack-band regularisation: a crack "
-                      "localises in one cell with linear shape functions).");
+                      "to the local grid spacing h (the shortest side of the particle's "
+                      "cell at t = 0; crack-band regularisation: a crack localises in "
+                      "one cell with linear shape functions).");
     prm.declare_entry("Damage rule", "crack band",
                       Patterns::Selection("crack band|paper"),
                       "'crack band': the damage makes the particle's max principal "
@@ -49,9 +50,8 @@ public:
   Eigensoftening(ParameterHandler &prm, const FractureContext &c)
       : grid_spacing(c.grid_spacing)
   {
-    const double C_eps = prm.get_double("Epsilon factor");
+    C_eps = prm.get_double("Epsilon factor");
     input::require_range(C_eps, 0, 1e6, true, c.section + "/Epsilon factor");
-    eps = C_eps * c.grid_spacing;
     SofteningContext sc;
     sc.tensile_strength = prm.get_double("Tensile strength");
     sc.fracture_energy  = prm.get_double("Fracture energy");
@@ -79,18 +79,22 @@ public:
   }
 
   std::string name() const override { return "eigensoftening"; }
-  double epsilon() const override { return eps; }
+  double epsilon(const double h) const override { return C_eps * h; }
 
   void update(ParticleStore<dim> &P, const Neighbourhood<dim> &nb,
               const FractureFields &F, const std::size_t begin, const std::size_t end,
               const unsigned int material_id) const override
   {
-    const double eps2     = eps * eps;
     unsigned long snapped = 0;
     for (std::size_t p = begin; p < end; ++p)
     {
       if (P.material_id[p] != material_id || P.failed[p])
         continue;
+      // Lengths from the particle's own cell: on a graded grid a crack in coarse cells
+      // spreads over a wider band than one in fine cells.
+      const double h_p   = F.spacing_of(p, grid_spacing);
+      const double eps   = C_eps * h_p;
+      const double eps2  = eps * eps;
       const double eps_I = max_principal(P.strain[p]);
       const double sig_I = F.max_principal_stress[p];
       if (P.onset_strain[p] == 0)
@@ -110,7 +114,7 @@ public:
         }
         continue;
       }
-      const double h             = band_width > 0 ? band_width : grid_spacing;
+      const double h             = band_width > 0 ? band_width : h_p;
       const double strain_beyond = eps_I - P.onset_strain[p];
       double chi_new             = 0;
       if (paper_rule)
@@ -182,7 +186,7 @@ private:
     return 0.5 * (lo + hi);
   }
 
-  double grid_spacing, eps = 0, f_t = 0, w_c = 0, band_width = 0;
+  double grid_spacing, C_eps = 0, f_t = 0, w_c = 0, band_width = 0;
   bool paper_rule = false;
   std::unique_ptr<SofteningLaw> law;
   mutable std::atomic<unsigned long> snap_back_count{0};
@@ -211,29 +215,30 @@ public:
   }
 
   Eigenerosion(ParameterHandler &prm, const FractureContext &c)
+      : grid_spacing(c.grid_spacing)
   {
-    const double C_eps = prm.get_double("Epsilon factor");
+    C_eps = prm.get_double("Epsilon factor");
     input::require_range(C_eps, 0, 1e6, true, c.section + "/Epsilon factor");
-    eps = C_eps * c.grid_spacing;
     G_c = prm.get_double("Fracture energy");
     input::require_range(G_c, 0, 1e300, true, c.section + "/Fracture energy");
-    const double factor = prm.get_double("Energy release factor");
+    factor = prm.get_double("Energy release factor");
     input::require_range(factor, 0, 1e6, true, c.section + "/Energy release factor");
-    release_length = factor * eps;
   }
 
   std::string name() const override { return "eigenerosion"; }
-  double epsilon() const override { return eps; }
+  double epsilon(const double h) const override { return C_eps * h; }
 
   void update(ParticleStore<dim> &P, const Neighbourhood<dim> &nb,
               const FractureFields &F, const std::size_t begin, const std::size_t end,
               const unsigned int material_id) const override
   {
-    const double eps2 = eps * eps;
     for (std::size_t p = begin; p < end; ++p)
     {
       if (P.material_id[p] != material_id || P.failed[p])
         continue;
+      const double eps            = C_eps * F.spacing_of(p, grid_spacing);
+      const double eps2           = eps * eps;
+      const double release_length = factor * eps;
       double vw = 0, v = 0;
       for (auto q = nb.begin(p); q != nb.end(p); ++q)
         if (P.position[*q].distance_square(P.position[p]) <= eps2)
@@ -251,7 +256,7 @@ public:
   }
 
 private:
-  double eps = 0, G_c = 0, release_length = 0;
+  double grid_spacing, C_eps = 0, G_c = 0, factor = 0;
 };
 } // namespace fracture
 } // namespace lme_mpm

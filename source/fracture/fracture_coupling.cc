@@ -5,7 +5,9 @@
 #include <lme_mpm/base/tensor_tools.h>
 #include <lme_mpm/fracture/fracture_coupling.h>
 
+#include <array>
 #include <cmath>
+#include <limits>
 
 namespace lme_mpm
 {
@@ -26,9 +28,13 @@ void FractureCoupling<dim>::declare_parameters(ParameterHandler &prm,
 template <int dim>
 void FractureCoupling<dim>::parse_parameters(ParameterHandler &prm,
                                              const MaterialSet<dim> &materials,
-                                             const double grid_spacing,
+                                             const BackgroundGrid<dim> &grid_,
                                              const double thickness)
 {
+  grid         = &grid_;
+  uniform_grid = true;
+  for (unsigned int d = 0; d < dim; ++d)
+    uniform_grid = uniform_grid && grid->is_uniform(d);
   models.clear();
   any_model = false;
   for (unsigned int m = 0; m < materials.size(); ++m)
@@ -40,7 +46,7 @@ void FractureCoupling<dim>::parse_parameters(ParameterHandler &prm,
     if (model != "none")
     {
       FractureContext fc;
-      fc.grid_spacing   = grid_spacing;
+      fc.grid_spacing   = grid->min_spacing();
       fc.thickness      = thickness;
       fc.dim            = dim;
       fc.p_wave_modulus = materials[m].density() * std::pow(materials[m].wave_speed(), 2);
@@ -57,33 +63,90 @@ void FractureCoupling<dim>::parse_parameters(ParameterHandler &prm,
 
 template <int dim>
 void FractureCoupling<dim>::check_neighbourhood(const unsigned int material,
-                                                const double spacing, const double h_min,
+                                                const unsigned int particles_per_cell,
                                                 const std::string &body_section) const
 {
   if (!models[material])
     return;
-  AssertThrow(models[material]->epsilon() >= spacing,
-              ExcBadInput(input::subsection_name("Material", material) +
-                              "/Fracture/Epsilon factor",
-                          "the neighbourhood radius C_eps h = " +
-                              std::to_string(models[material]->epsilon()) +
-                              " is smaller than the particle spacing " +
-                              std::to_string(spacing) + " of " + body_section +
-                              "; raise it to at least " +
-                              std::to_string(spacing / h_min)));
+  // The particle's h is its cell's shortest side; the particles are spaced by up to the
+  // longest side / particles_per_cell. The worst cell decides (on a uniform grid
+  // every particle uses the grid's smallest spacing).
+  double worst_margin = std::numeric_limits<double>::max(), h = 0, H = 0;
+  std::array<unsigned int, dim> ijk{};
+  for (unsigned int c = 0; c < grid->n_cells(); ++c)
+  {
+    double lo = std::numeric_limits<double>::max(), hi = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+      lo = std::min(lo, grid->spacing(d, ijk[d])),
+      hi = std::max(hi, grid->spacing(d, ijk[d]));
+    if (uniform_grid)
+      lo = grid->min_spacing();
+    const double margin = models[material]->epsilon(lo) * particles_per_cell / hi;
+    if (margin < worst_margin)
+      worst_margin = margin, h = lo, H = hi;
+    for (unsigned int d = 0; d < dim && ++ijk[d] == grid->n_cells_in(d); ++d)
+      ijk[d] = 0;
+  }
+  {
+    const double eps = models[material]->epsilon(h), spacing = H / particles_per_cell;
+    AssertThrow(eps >= spacing,
+                ExcBadInput(input::subsection_name("Material", material) +
+                                "/Fracture/Epsilon factor",
+                            "the neighbourhood radius C_eps h = " + std::to_string(eps) +
+                                " in cells of size h = " + std::to_string(h) +
+                                " is smaller than the particle spacing " +
+                                std::to_string(spacing) + " of " + body_section +
+                                "; raise it to at least " +
+                                std::to_string(H / (h * particles_per_cell))));
+  }
 }
 
 template <int dim>
-void FractureCoupling<dim>::update(ParticleStore<dim> &store)
+void FractureCoupling<dim>::update(ParticleStore<dim> &store, const CrackSet<dim> *cracks)
 {
   const std::size_t n = store.size();
-  double radius       = 0;
+  // On a graded grid each particle's lengths follow the cell it started in; the
+  // neighbourhood is searched to the widest radius, and each model keeps the
+  // neighbours within its particle's own.
+  double h_largest = grid->min_spacing();
+  if (uniform_grid)
+    fields.spacing.clear();
+  else
+  {
+    fields.spacing.resize(n);
+    parallel::for_range(n,
+                        [&](const std::size_t b, const std::size_t e)
+                        {
+                          for (std::size_t p = b; p < e; ++p)
+                          {
+                            std::array<unsigned int, dim> cell;
+                            grid->locate(store.reference_position[p], cell);
+                            double h = grid->spacing(0, cell[0]);
+                            for (unsigned int d = 1; d < dim; ++d)
+                              h = std::min(h, grid->spacing(d, cell[d]));
+                            fields.spacing[p] = h;
+                          }
+                        });
+    for (const double h : fields.spacing)
+      h_largest = std::max(h_largest, h);
+  }
+  double radius = 0;
   for (const auto &f : models)
     if (f)
-      radius = std::max(radius, f->epsilon());
+      radius = std::max(radius, f->epsilon(h_largest));
   // Neighbours from the particle's own body only: a tool pressed against a specimen
   // must not enter its onset or energy averages.
-  neighbours.build(store.position, radius, &store.body_id);
+  // ... nor from the other face of an explicit crack.
+  if (cracks && !cracks->empty())
+  {
+    crack_bins.build(cracks->polylines(), radius);
+    neighbours.build(store.position, radius, &store.body_id,
+                     [&](const std::size_t p, const std::size_t q) {
+                       return crack_bins.separates(store.position[p], store.position[q]);
+                     });
+  }
+  else
+    neighbours.build(store.position, radius, &store.body_id);
   // Snapshot of what neighbours read, so that no update sees another's new state.
   fields.max_principal_stress.resize(n);
   fields.energy_density.resize(n);

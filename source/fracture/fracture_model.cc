@@ -5,8 +5,9 @@ namespace lme_mpm
 void declare_shared_fracture_parameters(ParameterHandler &prm)
 {
   prm.declare_entry("Epsilon factor", "2", Patterns::Double(0),
-                    "C_eps: the epsilon-neighbourhood radius is C_eps times the grid "
-                    "spacing; > 0, and C_eps h should exceed the particle spacing.");
+                    "C_eps: the epsilon-neighbourhood radius is C_eps times the local "
+                    "grid spacing h (the shortest side of the particle's cell at t = "
+                    "0); > 0, and C_eps h should exceed the particle spacing.");
   prm.declare_entry("Fracture energy", "100", Patterns::Double(0),
                     "G_c (eigenerosion) or G_F (eigensoftening), N/m, > 0.");
 }

@@ -8,8 +8,10 @@
 namespace lme_mpm
 {
 template <int dim>
-void Neighbourhood<dim>::build(const std::vector<Point<dim>> &x, const double radius,
-                               const std::vector<std::uint16_t> *body)
+void Neighbourhood<dim>::build(
+    const std::vector<Point<dim>> &x, const double radius,
+    const std::vector<std::uint16_t> *body,
+    const std::function<bool(std::size_t, std::size_t)> &separated)
 {
   const std::size_t n = x.size();
   Assert(!body || body->size() == n, ExcDimensionMismatch(body->size(), n));
@@ -128,7 +130,13 @@ void Neighbourhood<dim>::build(const std::vector<Point<dim>> &x, const double ra
           }
         });
   };
-  if (several_bodies)
+  if (separated && several_bodies)
+    fill([&](const std::size_t p, const std::uint32_t q)
+         { return (*body)[p] == (*body)[q] && (p == q || !separated(p, q)); });
+  else if (separated)
+    fill([&](const std::size_t p, const std::uint32_t q)
+         { return p == q || !separated(p, q); });
+  else if (several_bodies)
     fill([&](const std::size_t p, const std::uint32_t q)
          { return (*body)[p] == (*body)[q]; });
   else

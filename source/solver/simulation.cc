@@ -45,8 +45,7 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
   background.parse_parameters(prm);
   cracks.parse_parameters(prm);
   materials.parse_parameters(prm, counts.materials, parameters.plane_stress);
-  fracture.parse_parameters(prm, materials, background.min_spacing(),
-                            parameters.thickness);
+  fracture.parse_parameters(prm, materials, background, parameters.thickness);
 
   const TimeStepping ts =
       stable_time_step(parameters, background.min_spacing(), materials.max_wave_speed());
@@ -100,12 +99,11 @@ void Simulation<dim>::setup_particles(ParameterHandler &prm,
     densities.push_back(materials[m].density());
   const auto bodies = ParticleGenerator<dim>::fill(
       prm, counts.bodies, background, densities, parameters.thickness, store);
-  const double h_min = background.min_spacing(), h_max = background.max_spacing();
+  const double h_min = background.min_spacing();
   for (const auto &body : bodies)
   {
     particle_spacing = std::min(particle_spacing, h_min / body.particles_per_cell);
-    fracture.check_neighbourhood(body.material, h_max / body.particles_per_cell, h_min,
-                                 body.section);
+    fracture.check_neighbourhood(body.material, body.particles_per_cell, body.section);
   }
 }
 
@@ -212,7 +210,7 @@ void Simulation<dim>::update_stresses_and_forces()
     parallel::for_range(store.size(), [&](const std::size_t b, const std::size_t e)
                         { transfer.strain_increments(b, e, dt); });
     parallel::for_range(store.size(), stresses);
-    fracture.update(store);
+    fracture.update(store, &cracks);
     transfer.scatter_chunks([&](const std::size_t b, const std::size_t e)
                             { transfer.forces(b, e, body_force); });
   }
@@ -311,7 +309,8 @@ void Simulation<dim>::serialize(Archive &ar)
   exact.serialize(ar);
   std::uint64_t history_size = ar.loading() ? 0 : history.size();
   ar(history_size);
-  resumed_history_size = history_size;
+  if (ar.loading())
+    resumed_history_size = history_size;
   constraints.serialize(ar);
   auto particle_series = particle_output->series();
   auto grid_series     = grid_output->series();

@@ -103,6 +103,35 @@ private:
   std::vector<unsigned int> segment_offsets{0};
   std::vector<std::pair<unsigned int, unsigned int>> segments;
 };
+
+/**
+ * The segments of a set of crack polylines binned in squares of a given side, to tell
+ * quickly whether two points that close lie on different faces of a crack (the
+ * epsilon-neighbourhood must not reach across one).
+ */
+template <int dim>
+class CrackSegmentBins
+{
+public:
+  /// Bins the segments of @p lines (kept by reference) for pairs at most @p radius
+  /// apart. Call again whenever the lines change.
+  void build(const std::vector<std::vector<Point<dim>>> &lines, double radius);
+  /**
+   * True if p and q (at most the radius apart) lie on different faces of a crack: the
+   * straight line p -> q crosses a segment, and the path round either end of that
+   * crack is longer than the radius. Near a tip the faces stay connected through the
+   * material ahead of it (the diffraction rule of Organ, Fleming & Belytschko 1996),
+   * so a particle at the tip keeps the neighbours an uncracked one would have.
+   */
+  bool separates(const Point<dim> &p, const Point<dim> &q) const;
+
+private:
+  const std::vector<std::vector<Point<dim>>> *lines = nullptr;
+  Point<dim> lower;
+  double side = 0;
+  std::array<unsigned int, dim> n_bins{};
+  std::vector<std::vector<std::pair<unsigned int, unsigned int>>> bins;
+};
 } // namespace lme_mpm
 
 #endif

@@ -3,8 +3,10 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <lme_mpm/fracture/crack_set.h>
 #include <lme_mpm/fracture/fracture_model.h>
 #include <lme_mpm/fracture/neighbourhood.h>
+#include <lme_mpm/grid/background_grid.h>
 #include <lme_mpm/materials/material_set.h>
 #include <lme_mpm/particles/particle_store.h>
 
@@ -28,11 +30,12 @@ public:
   /// Declares "Material N/Fracture" for the @p n_materials materials.
   static void declare_parameters(ParameterHandler &prm, unsigned int n_materials);
   /**
-   * Builds the models; @p grid_spacing is the h of eps = C_eps h, @p thickness the
-   * 2D thickness.
+   * Builds the models. The lengths tied to the grid (eps = C_eps h, a band width of 0)
+   * use each particle's local spacing on @p grid (FractureFields::spacing); @p
+   * thickness is the 2D thickness. The grid must outlive this object.
    */
   void parse_parameters(ParameterHandler &prm, const MaterialSet<dim> &materials,
-                        double grid_spacing, double thickness);
+                        const BackgroundGrid<dim> &grid, double thickness);
 
   /// True if any material fractures.
   bool active() const { return any_model; }
@@ -42,15 +45,16 @@ public:
   }
   /**
    * Throws unless the neighbourhood of @p material is at least as wide as the spacing
-   * @p particle_spacing of the particles @p body_section places (a narrower one holds
-   * the particle alone, and the criterion would average nothing); @p h_min turns the
-   * spacing into the smallest accepted epsilon factor.
+   * h / @p particles_per_cell of the particles @p body_section places, in the
+   * smallest and the largest cells of the grid (a narrower one holds the particle
+   * alone, and the criterion would average nothing).
    */
-  void check_neighbourhood(unsigned int material, double particle_spacing, double h_min,
+  void check_neighbourhood(unsigned int material, unsigned int particles_per_cell,
                            const std::string &body_section) const;
 
-  /// The fracture update of one step, after the stresses.
-  void update(ParticleStore<dim> &particles);
+  /// The fracture update of one step, after the stresses. With @p cracks, particles
+  /// on different faces of an explicit crack are not neighbours.
+  void update(ParticleStore<dim> &particles, const CrackSet<dim> *cracks = nullptr);
 
   /// Counters of every model, and the failed particles and dissipated energy.
   void add_statistics(const ParticleStore<dim> &particles,
@@ -58,8 +62,11 @@ public:
 
 private:
   std::vector<std::unique_ptr<FractureModel<dim>>> models; ///< per material, or null
-  bool any_model = false;
+  bool any_model                  = false;
+  const BackgroundGrid<dim> *grid = nullptr;
+  bool uniform_grid               = true;
   Neighbourhood<dim> neighbours;
+  CrackSegmentBins<dim> crack_bins;
   FractureFields fields;
 };
 } // namespace lme_mpm

@@ -18,12 +18,22 @@ struct FractureFields
 {
   std::vector<double> max_principal_stress; ///< of the undamaged stress; 0 once failed
   std::vector<double> energy_density;       ///< sigma : eps / 2 (J/m^3); 0 once failed
+  /// Local grid spacing h of each particle (m), the length of eps = C_eps h and of a
+  /// band width tied to the grid: the smallest side of the cell that held the particle
+  /// at t = 0 (fixed, so a particle keeps its lengths as it moves). Empty on a uniform
+  /// grid, where every particle's h is FractureContext::grid_spacing.
+  std::vector<double> spacing;
+
+  double spacing_of(const std::size_t p, const double uniform_spacing) const
+  {
+    return spacing.empty() ? uniform_spacing : spacing[p];
+  }
 };
 
 /// What a fracture model is built with.
 struct FractureContext
 {
-  double grid_spacing   = 0; ///< h in eps = C_eps h
+  double grid_spacing   = 0; ///< smallest spacing of the grid (h of a uniform grid)
   double thickness      = 1; ///< 2D thickness, for the particle spacing
   unsigned int dim      = 2;
   double p_wave_modulus = 0; ///< rho c_P^2 of the material, for sanity checks
@@ -42,8 +52,9 @@ class FractureModel
 public:
   virtual ~FractureModel()         = default;
   virtual std::string name() const = 0;
-  /// Radius of the epsilon-neighbourhood (m).
-  virtual double epsilon() const                      = 0;
+  /// Radius of the epsilon-neighbourhood (m) of a particle whose local grid spacing
+  /// (FractureFields::spacing) is @p h.
+  virtual double epsilon(double h) const              = 0;
   virtual void update(ParticleStore<dim> &particles, const Neighbourhood<dim> &neighbours,
                       const FractureFields &fields, std::size_t begin, std::size_t end,
                       unsigned int material_id) const = 0;
