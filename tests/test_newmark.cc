@@ -82,8 +82,7 @@ std::unique_ptr<lme_mpm::Simulation<2>> block(const std::string &extra,
                                               std::ostringstream &quiet)
 {
   using namespace lme_mpm;
-  static dealii::ParameterHandler prm; // the simulation keeps no reference to it
-  prm.clear();
+  dealii::ParameterHandler prm; // the simulation keeps no reference to it
   ParameterCounts counts;
   counts.constraints = n_constraints;
   Simulation<2>::declare_parameters(prm, counts);

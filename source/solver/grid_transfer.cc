@@ -222,12 +222,9 @@ double GridTransfer<dim>::grid_to_particles(const ExplicitNewmark &newmark,
         double pw = 0;
         for (std::size_t p = b; p < e; ++p)
         {
-          const std::size_t o = p * conn.stride;
-          Tensor<1, dim> a;
-          for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
-            a += conn.N[o + k] * fields.acceleration[conn.nodes[o + k]];
-          particles.velocity[p] = newmark.corrected_velocity(
-              particles.velocity[p], particles.acceleration[p], a, dt);
+          const Tensor<1, dim> a = interpolate(fields.acceleration, p);
+          particles.velocity[p]  = newmark.corrected_velocity(
+               particles.velocity[p], particles.acceleration[p], a, dt);
           particles.acceleration[p] = a;
           particles.position[p] += increment[p];
           pw += particles.mass[p] * (body_force * increment[p]);
@@ -249,13 +246,7 @@ void GridTransfer<dim>::interpolate_accelerations()
                       [&](const std::size_t b, const std::size_t e)
                       {
                         for (std::size_t p = b; p < e; ++p)
-                        {
-                          const std::size_t o = p * conn.stride;
-                          Tensor<1, dim> a;
-                          for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
-                            a += conn.N[o + k] * fields.acceleration[conn.nodes[o + k]];
-                          particles.acceleration[p] = a;
-                        }
+                          particles.acceleration[p] = interpolate(fields.acceleration, p);
                       });
 }
 
@@ -270,13 +261,7 @@ void GridTransfer<dim>::apply_consistent_mass(const std::vector<Tensor<1, dim>> 
                       [&](const std::size_t b, const std::size_t e)
                       {
                         for (std::size_t p = b; p < e; ++p)
-                        {
-                          const std::size_t o = p * conn.stride;
-                          Tensor<1, dim> xp;
-                          for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
-                            xp += conn.N[o + k] * x[conn.nodes[o + k]];
-                          particle_scratch[p] = particles.mass[p] * xp;
-                        }
+                          particle_scratch[p] = particles.mass[p] * interpolate(x, p);
                       });
   for (const unsigned int I : fields.active)
     Mx[I] = Tensor<1, dim>();

@@ -165,6 +165,17 @@ public:
   }
 
 private:
+  /// sum_I N_Ip x_I at particle p of a nodal vector field (same order of sums in every
+  /// interpolation, so they agree to the bit).
+  Tensor<1, dim> interpolate(const std::vector<Tensor<1, dim>> &x,
+                             const std::size_t p) const
+  {
+    const std::size_t o = p * conn.stride;
+    Tensor<1, dim> xp;
+    for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+      xp += conn.N[o + k] * x[conn.nodes[o + k]];
+    return xp;
+  }
   /// How many cell layers the supports of [begin, end) reach below and above their
   /// particles' layers.
   std::pair<unsigned int, unsigned int> support_reach(std::size_t begin,
