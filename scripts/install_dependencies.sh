@@ -3,6 +3,7 @@
 # it is already there. Needs root (or sudo) only when something is missing.
 set -euo pipefail
 packages=(libdeal.ii-dev libgtest-dev googletest libboost-program-options-dev libeigen3-dev
+          nlohmann-json3-dev
           libbenchmark-dev cmake g++ make python3 python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do

@@ -2,7 +2,15 @@
 // the offending entry (or file) and what is allowed.
 #include <gtest/gtest.h>
 
+#include <lme_mpm/output/run_summary.h>
+
+#include <nlohmann/json.hpp>
+
 #include "test_helpers.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <limits>
 
 #include <filesystem>
 #include <fstream>
@@ -81,6 +89,19 @@ const std::vector<BadInput> bad_inputs = {
     {{"Cracks/Polylines=0, 0.5, 0.25, 0.5; 0, 0.6"}, "'0, 0.6' needs an even number"},
     {{"Cracks/Polylines=0, 0.5, 0, 0.5"}, "repeats a point"},
     {{"Cracks/Polylines=0, 0.5, 0.2, x"}, "Cracks/Polylines"},
+    // Each entry in range, what they give together not: the time step, the step count,
+    // the grid's memory, particle masses, functions at t = 0.
+    {{"Material 1/Density=1e-300"}, "steps, more than the 2e9 allowed"},
+    {{"Material 1/linear elastic/Young's modulus=1e300"}, "the materials' c_P = "},
+    {{"Grid/Cell size=1e-9"}, "Grid/Cell size': a grid of"},
+    {{"Grid/Step sizes x=1e12*1e-12"}, "Grid/Step sizes x': a grid of"},
+    {{"Problem/Thickness=1e-300", "Material 1/Density=1e-300",
+      "Material 1/linear elastic/Young's modulus=1e-300"},
+     "must be finite and positive"},
+    {{"Body 1/Initial velocity/Function expression=1/(x-x); 0"},
+     "Body 1/Initial velocity': is not finite at"},
+    {{"Boundary conditions/Constraint 1/Velocity/Function expression=1/(t-t); 0"},
+     "Constraint 1/Velocity': component x is inf"},
 };
 } // namespace
 
@@ -100,6 +121,51 @@ TEST(BadInput, EachCaseFailsWithItsOwnMessageAndWritesNothing)
   EXPECT_GE(bad_inputs.size(), 30u);
   // Distinct inputs give distinct messages (the entry and the value are named).
   EXPECT_GE(messages.size(), bad_inputs.size() - 2);
+}
+
+TEST(Summary, IsValidJsonWhateverItHolds)
+{
+  // Quotes, backslashes and line breaks in the message; values that are not finite
+  // become null and are named in the message.
+  lme_mpm::RunSummary s;
+  s.status               = "aborted";
+  s.message              = "a \"quoted\" entry, a back\\slash\nand a new line";
+  s.values               = {{"fine", 1.5},
+                            {"huge", std::numeric_limits<double>::infinity()},
+                            {"undefined", std::numeric_limits<double>::quiet_NaN()},
+                            {"steps", 12}};
+  const std::string file = lme_mpm_test::scratch("summary") + ".json";
+  s.write(file, "lme", 0xabcdef, 2);
+  nlohmann::json j;
+  ASSERT_NO_THROW(j = nlohmann::json::parse(lme_mpm_test::file_text(file)));
+  EXPECT_EQ(j["status"], "aborted");
+  EXPECT_EQ(j["state_checksum"], "abcdef");
+  EXPECT_EQ(j["fine"], 1.5);
+  EXPECT_EQ(j["steps"], 12);
+  EXPECT_TRUE(j["huge"].is_null());
+  EXPECT_TRUE(j["undefined"].is_null());
+  const std::string message = j["message"];
+  EXPECT_EQ(message.find(s.message), 0u) << message;
+  EXPECT_NE(message.find("huge, undefined"), std::string::npos) << message;
+}
+
+TEST(BadInput, ParticlesBeyondTheAvailableMemoryStopBeforeAllocation)
+{
+  // The bar's 84 candidate cells (its box reaches into the next cell layer) at 8
+  // particles per cell direction: up to 43,008 particles, about 39 MB at 900 bytes
+  // each. With 10 MB available the run stops naming the entry and the amount, and
+  // writes nothing.
+  const std::string out = lme_mpm_test::scratch("memory");
+  setenv("LME_MPM_MEMORY_LIMIT", "1e7", 1);
+  const std::string msg =
+      lme_mpm_test::run_error(lme_mpm_test::scene("vibrating_bar_3d.prm"),
+                              {"Body 1/Particles per cell direction=8"}, out);
+  unsetenv("LME_MPM_MEMORY_LIMIT");
+  EXPECT_NE(msg.find("Body 1/Particles per cell direction': up to 43008 particles needs "
+                     "about 0.0387 GB"),
+            std::string::npos)
+      << msg;
+  EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 TEST(BadInput, MissingFileAndMisspelledEntryInFile)
@@ -135,6 +201,36 @@ TEST(BadInput, CommandLineExitCodes)
             1);
   EXPECT_FALSE(std::filesystem::exists(out));
   EXPECT_EQ(run("--print-parameters"), 0);
+}
+
+TEST(RunGuards, PrescribedVelocityThatTurnsInfiniteNamesItsEntry)
+{
+  // Finite at t = 0, infinite later: the run stops at that step, naming the entry,
+  // keeps its output and says 'aborted'.
+  const std::string out = lme_mpm_test::scratch("infinite_velocity");
+  const std::string msg =
+      lme_mpm_test::run_error(lme_mpm_test::scene("vibrating_bar.prm"),
+                              {"Boundary conditions/Constraint 1/Velocity/Function "
+                               "expression=t > 1e-4 ? 1/0 : 0; 0"},
+                              out);
+  EXPECT_NE(msg.find("Run stopped at step"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("'Boundary conditions/Constraint 1/Velocity'"), std::string::npos)
+      << msg;
+  ASSERT_TRUE(std::filesystem::exists(out + "/summary.json"));
+  EXPECT_NE(
+      lme_mpm_test::file_text(out + "/summary.json").find("\"status\": \"aborted\""),
+      std::string::npos);
+}
+
+TEST(RunGuards, StepLimitEndsAbortedNotCompleted)
+{
+  const std::string out = lme_mpm_test::scratch("step_limit");
+  const std::string msg = lme_mpm_test::run_error(
+      lme_mpm_test::scene("vibrating_bar.prm"), {"Time/Maximum steps=5"}, out);
+  EXPECT_NE(msg.find("Stopped after 5 steps"), std::string::npos) << msg;
+  const std::string summary = lme_mpm_test::file_text(out + "/summary.json");
+  EXPECT_NE(summary.find("\"status\": \"aborted\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"steps\": 5"), std::string::npos) << summary;
 }
 
 TEST(RunGuards, UnstableRunStopsWithDiagnosticAndKeepsItsOutput)

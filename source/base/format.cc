@@ -16,6 +16,13 @@ std::string point_to_string(const dealii::Point<dim> &p)
   return s.str();
 }
 
+std::string format_double(const double value)
+{
+  std::ostringstream s;
+  s << value;
+  return s.str();
+}
+
 template std::string point_to_string<2>(const dealii::Point<2> &);
 template std::string point_to_string<3>(const dealii::Point<3> &);
 } // namespace lme_mpm

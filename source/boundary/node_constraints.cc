@@ -1,9 +1,12 @@
+#include <lme_mpm/base/format.h>
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/base/parameters.h>
 #include <lme_mpm/boundary/node_constraints.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <sstream>
 
 namespace lme_mpm
 {
@@ -91,8 +94,9 @@ void NodeConstraint<dim>::parse_parameters(ParameterHandler &prm,
   AssertThrow(dim == 3 || comps.find('z') == std::string::npos,
               ExcBadInput(prefix + "/Components", "'z' does not exist in 2D"));
 
-  function = std::make_unique<Functions::ParsedFunction<dim>>(dim);
-  input::parse_function(prm, "Velocity", *function, prefix + "/Velocity");
+  function       = std::make_unique<Functions::ParsedFunction<dim>>(dim);
+  velocity_entry = prefix + "/Velocity";
+  input::parse_function(prm, "Velocity", *function, velocity_entry);
   prm.enter_subsection("Velocity");
   const std::string expr = prm.get("Function expression");
   prm.leave_subsection();
@@ -110,12 +114,15 @@ void NodeConstraint<dim>::parse_parameters(ParameterHandler &prm,
       const bool right_ok = pos + 1 >= expr.size() || !std::isalnum(expr[pos + 1]);
       depends             = depends || (left_ok && right_ok);
     }
+  constant = false;
+  if (!depends)
+    constant_value = velocity(0, 0);
   constant = !depends;
-  if (constant)
-  {
-    for (unsigned int d = 0; d < dim; ++d)
-      constant_value[d] = function->value(points[0], d);
-  }
+  // Finite at every node at the start, before anything is written (and at every
+  // later evaluation, by velocity()).
+  if (!constant)
+    for (unsigned int i = 0; i < points.size(); ++i)
+      velocity(i, 0);
 }
 
 template <int dim>
@@ -127,7 +134,17 @@ Tensor<1, dim> NodeConstraint<dim>::velocity(const unsigned int i, const double 
   Tensor<1, dim> v;
   for (unsigned int d = 0; d < dim; ++d)
     if (component_mask[d])
+    {
       v[d] = function->value(points[i], d);
+      if (!std::isfinite(v[d]))
+      {
+        std::ostringstream msg;
+        msg << "component "
+            << "xyz"[d] << " is " << v[d] << " at node " << point_to_string(points[i])
+            << ", t = " << t << " s";
+        AssertThrow(false, ExcBadInput(velocity_entry, msg.str()));
+      }
+    }
   return v;
 }
 

@@ -3,11 +3,14 @@
 #include <deal.II/fe/fe_q.h>
 
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/base/memory.h>
 #include <lme_mpm/base/parameters.h>
 #include <lme_mpm/grid/background_grid.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <sstream>
 
 namespace lme_mpm
 {
@@ -86,6 +89,33 @@ void BackgroundGrid<dim>::parse_parameters(ParameterHandler &prm)
   const Point<dim> lo = input::parse_point<dim>(in.lower, "Grid/Lower corner");
   const Point<dim> hi = input::parse_point<dim>(in.upper, "Grid/Upper corner");
   const double h      = in.cell_size;
+  // The size of the grid before any of it is allocated: a tiny cell size must stop
+  // with what it would need, not exhaust the machine.
+  {
+    double cells      = 1;
+    std::string entry = "Grid/Cell size";
+    for (unsigned int d = 0; d < dim; ++d)
+      if (input::trim(in.steps[d]).empty())
+        cells *= std::max(1.0, std::round((hi[d] - lo[d]) / h));
+      else
+      {
+        double count = 0;
+        for (const auto &piece : input::split(in.steps[d], ','))
+        {
+          const auto star = piece.find('*');
+          count += star == std::string::npos
+                       ? 1.0
+                       : std::abs(std::atof(piece.substr(0, star).c_str()));
+        }
+        cells *= std::max(1.0, count);
+        entry = std::string("Grid/Step sizes ") + axis_name[d];
+      }
+    std::ostringstream what;
+    what << "a grid of " << cells << " cells";
+    // About 400 (2D) and 800 (3D) bytes per cell: deal.II's mesh and DoFs, the
+    // nodal fields (measured on 2D grids of 2 and 4 million cells).
+    memory::require(cells * (dim == 2 ? 400.0 : 800.0), entry, what.str());
+  }
   std::array<std::vector<double>, dim> steps;
   for (unsigned int d = 0; d < dim; ++d)
   {

@@ -1,8 +1,10 @@
+#include <lme_mpm/base/format.h>
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/base/parameters.h>
 #include <lme_mpm/materials/material_set.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace lme_mpm
 {
@@ -60,6 +62,13 @@ void MaterialSet<dim>::parse_parameters(ParameterHandler &prm,
     context.section = section + "/" + in.model;
     input::require_range(context.density, 0, 1e300, true, section + "/Density");
     models.push_back(MaterialRegistry<dim>::instance().create(in.model, prm, context));
+    // In range one by one, the entries may still give a useless wave speed (a huge
+    // modulus over a tiny density), and with it the time step.
+    const double c = models.back()->wave_speed();
+    AssertThrow(std::isfinite(c) && c > 0,
+                ExcBadInput(context.section + " with " + section + "/Density",
+                            "they give the P-wave speed c_P = " + format_double(c) +
+                                " m/s; it must be finite and positive"));
     prm.leave_subsection();
   }
 }

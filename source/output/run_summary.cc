@@ -1,25 +1,47 @@
 #include <lme_mpm/output/run_summary.h>
 
+#include <nlohmann/json.hpp>
+
+#include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <sstream>
 
 namespace lme_mpm
 {
 void RunSummary::write(const std::string &file, const std::string &shape_function,
                        const std::uint64_t checksum, const unsigned int dim) const
 {
-  std::ofstream json(file);
-  std::string quoted;
-  for (const char c : message)
-    quoted += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
-  json << std::setprecision(10) << "{\n  \"status\": \"" << status << "\",\n"
-       << "  \"message\": \"" << quoted << "\",\n"
-       << "  \"shape_function\": \"" << shape_function << "\",\n"
-       << "  \"state_checksum\": \"" << std::hex << checksum << std::dec << "\",\n"
-       << "  \"dimension\": " << dim;
-  for (const auto &r : values)
-    json << ",\n  \"" << r.first << "\": " << r.second;
-  json << "\n}\n";
+  // Ordered as written; a value that is not finite becomes null and is named in the
+  // message, as JSON has no inf or nan.
+  nlohmann::ordered_json json;
+  std::ostringstream hex;
+  hex << std::hex << checksum;
+  std::string non_finite;
+  json["status"]         = status;
+  json["message"]        = message;
+  json["shape_function"] = shape_function;
+  json["state_checksum"] = hex.str();
+  json["dimension"]      = dim;
+  for (const auto &[name, value] : values)
+  {
+    if (std::isfinite(value))
+    {
+      // 10 significant digits, as the history files have.
+      std::ostringstream s;
+      s << std::setprecision(10) << value;
+      json[name] = nlohmann::ordered_json::parse(s.str());
+    }
+    else
+    {
+      json[name] = nullptr;
+      non_finite += (non_finite.empty() ? "" : ", ") + name;
+    }
+  }
+  if (!non_finite.empty())
+    json["message"] = message + (message.empty() ? "" : " ") +
+                      "(not finite, written as null: " + non_finite + ")";
+  std::ofstream(file) << json.dump(2) << '\n';
 }
 
 template <int dim>

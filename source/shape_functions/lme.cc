@@ -388,7 +388,7 @@ private:
     while (!(r.norm() < newton_tol))
     {
       if (it == max_iterations)
-        report("not converged");
+        report("not converged ('LME maximum iterations')");
       if (!std::isfinite(F) || singular(J))
         report("singular Hessian");
       // Newton step s = -J^-1 r plus, where it is a small correction, Chebyshev's

@@ -51,7 +51,36 @@ run_dim(const std::string &file, const std::vector<std::string> &overrides,
 {
   ParameterHandler prm;
   Simulation<dim>::declare_parameters(prm, counts);
-  prm.parse_input(file, "", false, false);
+  try
+  {
+    prm.parse_input(file, "", false, false);
+  }
+  catch (const std::exception &e)
+  {
+    // A numbered subsection beyond its count ("Body 3" with two bodies): name the
+    // count that leaves it out.
+    // deal.II wraps its messages; the concise form is on one line.
+    const std::string what = input::concise_message(e),
+                      tag  = "no such subsection to be entered: ";
+    const auto at          = what.find(tag);
+    if (at == std::string::npos)
+      throw;
+    const std::string rest = what.substr(at + tag.size());
+    const std::string sub  = input::trim(rest.substr(0, rest.find('\n')));
+    std::string count;
+    for (const auto &[prefix, entry] : std::vector<std::pair<std::string, std::string>>{
+             {"Material ", "Problem/Number of materials"},
+             {"Body ", "Problem/Number of bodies"},
+             {"Boundary conditions.Constraint ",
+              "Boundary conditions/Number of constraints"},
+             {"Output.Probe ", "Output/Number of probes"}})
+      if (sub.rfind(prefix, 0) == 0)
+        count = entry;
+    if (count.empty())
+      throw;
+    AssertThrow(false, ExcBadInput(count, "the file has a subsection '" + sub +
+                                              "', beyond the number this entry gives"));
+  }
   apply_overrides(prm, overrides, false);
   Simulation<dim> simulation(prm, counts, console);
   if (!resume.empty())

@@ -72,6 +72,9 @@ void RunParameters<dim>::entries(EntryList &list)
   list.add("Newmark gamma", newmark_gamma, "0.5", Patterns::Double(0.5, 1),
            "Newmark gamma in [0.5, 1]: 0.5 conserves energy (second order), "
            "larger values damp high frequencies (first order).");
+  list.add("Maximum steps", max_steps, "0", Patterns::Integer(0),
+           "Stop after this many steps (0: no limit), for a trial of a scene's "
+           "set-up; such a run ends 'aborted', as it did not reach the end time.");
   list.leave();
 
   list.enter("Shape functions");
@@ -163,11 +166,26 @@ TimeStepping stable_time_step(const RunParameters<dim> &run, const double h_min,
     AssertThrow(run.cfl > 0, ExcBadInput("Time/CFL", "must be positive"));
     ts.dt = run.cfl * dt_wave;
   }
-  // Land exactly on the end time.
-  ts.n_steps = static_cast<unsigned int>(std::ceil(run.end_time / ts.dt - 1e-9));
-  AssertThrow(ts.n_steps < 2e9,
-              ExcBadInput("Time/End time", "needs more than 2e9 steps"));
-  ts.dt = run.end_time / ts.n_steps;
+  {
+    std::ostringstream msg;
+    msg << "with the grid's smallest spacing h_min = " << h_min
+        << " m and the largest P-wave speed c_P = " << c_max
+        << " m/s, the stable time step is " << ts.dt << " s";
+    AssertThrow(std::isfinite(ts.dt) && ts.dt > 0,
+                ExcBadInput("Time/CFL (or Time/Time step)", msg.str()));
+  }
+  // Land exactly on the end time, in at least one step; the count is checked as a
+  // double, before it is converted.
+  const double steps = std::max(1.0, std::ceil(run.end_time / ts.dt - 1e-9));
+  {
+    std::ostringstream msg;
+    msg << "End time " << run.end_time << " s at dt = " << ts.dt
+        << " s (from h_min = " << h_min << " m and the materials' c_P = " << c_max
+        << " m/s) needs " << steps << " steps, more than the 2e9 allowed";
+    AssertThrow(steps < 2e9, ExcBadInput("Time/End time", msg.str()));
+  }
+  ts.n_steps = static_cast<unsigned int>(steps);
+  ts.dt      = run.end_time / ts.n_steps;
   return ts;
 }
 

@@ -105,6 +105,34 @@ void Simulation<dim>::setup_particles(ParameterHandler &prm,
     particle_spacing = std::min(particle_spacing, h_min / body.particles_per_cell);
     fracture.check_neighbourhood(body.material, body.particles_per_cell, body.section);
   }
+  // The time step comes from the wave speed; the motion the input starts must not
+  // carry a particle half a cell in one step either (the run guard would stop it at
+  // step 1 and blame the CFL number).
+  std::size_t fastest = 0;
+  for (std::size_t p = 0; p < store.size(); ++p)
+    if (store.velocity[p].norm() > store.velocity[fastest].norm())
+      fastest = p;
+  if (store.size() > 0)
+  {
+    const double v = store.velocity[fastest].norm();
+    std::ostringstream msg;
+    msg << "the initial speed " << v << " m/s at "
+        << point_to_string(store.position[fastest]) << " carries a particle " << v * dt
+        << " m in one step of dt = " << dt << " s, more than half the smallest cell ("
+        << 0.5 * h_min << " m): lower the speed or Time/CFL";
+    AssertThrow(v * dt <= 0.5 * h_min,
+                ExcBadInput(bodies[store.body_id[fastest]].section + "/Initial velocity",
+                            msg.str()));
+  }
+  {
+    const double g = parameters.body_force.norm();
+    std::ostringstream msg;
+    msg << "|b| = " << g << " m/s^2 moves a particle " << 0.5 * g * dt * dt
+        << " m in one step of dt = " << dt << " s, more than half the smallest cell ("
+        << 0.5 * h_min << " m)";
+    AssertThrow(0.5 * g * dt * dt <= 0.5 * h_min,
+                ExcBadInput("Problem/Body force", msg.str()));
+  }
 }
 
 // ------------------------------------------------------------------ one step
@@ -459,8 +487,10 @@ void Simulation<dim>::advance_to_end(TimerOutput &timer,
     {
       TimerOutput::Scope scope(timer, "output");
       write_output_row();
-      while (next_output_time <= t + 0.5 * dt)
-        next_output_time += output_interval;
+      // The first output time past this step (an interval below the rounding of t
+      // would never move it by addition).
+      next_output_time =
+          output_interval * (std::floor((t + 0.5 * dt) / output_interval) + 1);
     }
     const bool by_steps = parameters.checkpoint_every_steps > 0 &&
                           step_count % parameters.checkpoint_every_steps == 0;
@@ -476,6 +506,9 @@ void Simulation<dim>::advance_to_end(TimerOutput &timer,
     }
     if (step_count % report_every == 0 || step_count == n_steps)
       report_progress(start);
+    if (parameters.max_steps > 0 && step_count >= parameters.max_steps &&
+        step_count < n_steps)
+      AssertThrow(false, ExcStepLimit(step_count, t));
   }
 }
 
@@ -527,7 +560,8 @@ std::map<std::string, double> Simulation<dim>::run()
     // Any failure inside the loop (an unstable step, a shape-function solve that does
     // not converge) ends the run with what it produced kept on disk.
     status = "aborted";
-    if (dynamic_cast<const ExcRunAborted *>(&e) == nullptr)
+    if (dynamic_cast<const ExcRunAborted *>(&e) == nullptr &&
+        dynamic_cast<const ExcStepLimit *>(&e) == nullptr)
     {
       std::ostringstream where;
       where << "Run stopped at step " << step_count + 1 << ", time " << t << ": "

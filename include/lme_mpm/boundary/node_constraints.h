@@ -34,7 +34,8 @@ public:
   const std::string &name() const { return set_name; }
   const std::vector<unsigned int> &nodes() const { return node_list; }
   bool constrains(const unsigned int c) const { return component_mask[c]; }
-  /// Prescribed velocity of node i of the set at time t.
+  /// Prescribed velocity of node i of the set at time t; throws ExcBadInput naming the
+  /// entry where the expression is not finite.
   Tensor<1, dim> velocity(unsigned int i, double t) const;
 
   /**
@@ -86,6 +87,7 @@ public:
 
 private:
   std::string set_name;
+  std::string velocity_entry; ///< "Boundary conditions/Constraint N/Velocity"
   std::vector<unsigned int> node_list;
   std::array<bool, dim> component_mask{};
   std::unique_ptr<Functions::ParsedFunction<dim>> function;

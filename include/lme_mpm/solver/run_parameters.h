@@ -43,7 +43,7 @@ struct RunParameters
   Tensor<1, dim> body_force;
   // Time
   double end_time = 1, cfl = 0.3, fixed_time_step = 0, max_cfl = 1, newmark_gamma = 0.5;
-  unsigned int mass_corrections = 0;
+  unsigned int mass_corrections = 0, max_steps = 0;
   // Output
   std::string directory;
   double output_interval = 0;

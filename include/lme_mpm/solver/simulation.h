@@ -36,6 +36,10 @@
 
 namespace lme_mpm
 {
+/// A run stopped on purpose before its end time ("Time/Maximum steps").
+DeclException2(ExcStepLimit, unsigned int, double,
+               << "Stopped after " << arg1 << " steps at time " << arg2
+               << " s, as 'Time/Maximum steps' asks; the end time was not reached");
 /// A run that became unphysical or unstable; the message says where and why.
 DeclException5(ExcRunAborted, unsigned int, double, unsigned int, std::string,
                std::string, << "Run stopped at step " << arg1 << ", time " << arg2
