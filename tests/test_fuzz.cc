@@ -211,9 +211,11 @@ TEST(Fuzz, RandomEditsOfTheScenesRunOrFailCleanly)
     nlohmann::json summary;
     const bool has_summary = std::filesystem::exists(out + "/summary.json");
     if (has_summary)
+    {
       ASSERT_NO_THROW(
           summary = nlohmann::json::parse(lme_mpm_test::file_text(out + "/summary.json")))
           << "summary.json is not valid JSON";
+    }
     if (rc == 0)
     {
       ASSERT_TRUE(has_summary);
@@ -224,7 +226,9 @@ TEST(Fuzz, RandomEditsOfTheScenesRunOrFailCleanly)
     }
     ASSERT_NE(msg.find("lme-mpm: error: "), std::string::npos);
     if (has_summary)
+    {
       EXPECT_EQ(summary["status"], "aborted");
+    }
     if (msg.find("'Time/Maximum steps'") != std::string::npos)
       ++outcome["stopped at the step limit"];
     else if (msg.find("Invalid input for '") != std::string::npos ||
