@@ -1,5 +1,6 @@
 #include <lme_mpm/base/input.h>
 
+#include <cctype>
 #include <cmath>
 #include <sstream>
 
@@ -109,6 +110,22 @@ Call parse_call(const std::string &text, const std::string &entry)
   call.name = trim(t.substr(0, open));
   call.args = parse_doubles(t.substr(open + 1, t.size() - open - 2), entry);
   return call;
+}
+
+bool depends_on_space_or_time(const std::string &expr)
+{
+  for (const char *v : {"x", "y", "z", "t"})
+    for (std::size_t pos = expr.find(v); pos != std::string::npos;
+         pos             = expr.find(v, pos + 1))
+    {
+      const bool left_ok =
+          pos == 0 || !(std::isalnum(expr[pos - 1]) || expr[pos - 1] == '_');
+      const bool right_ok = pos + 1 >= expr.size() ||
+                            !(std::isalnum(expr[pos + 1]) || expr[pos + 1] == '_');
+      if (left_ok && right_ok)
+        return true;
+    }
+  return false;
 }
 
 void require_range(const double value, const double lo, const double hi, const bool open,

@@ -105,16 +105,8 @@ void NodeConstraint<dim>::parse_parameters(ParameterHandler &prm,
   node_reaction.assign(node_list.size(), Tensor<1, dim>());
 
   // A constant expression (no x, y, z or t) is evaluated once.
-  bool depends = false;
-  for (const char *v : {"x", "y", "z", "t"})
-    for (std::size_t pos = expr.find(v); pos != std::string::npos;
-         pos             = expr.find(v, pos + 1))
-    {
-      const bool left_ok  = pos == 0 || !std::isalnum(expr[pos - 1]);
-      const bool right_ok = pos + 1 >= expr.size() || !std::isalnum(expr[pos + 1]);
-      depends             = depends || (left_ok && right_ok);
-    }
-  constant = false;
+  const bool depends = input::depends_on_space_or_time(expr);
+  constant           = false;
   if (!depends)
     constant_value = velocity(0, 0);
   constant = !depends;

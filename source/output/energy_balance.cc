@@ -27,7 +27,8 @@ Energies EnergyBalance<dim>::measure(const ParticleStore<dim> &store,
       {
         double s = 0;
         for (std::size_t p = b; p < end; ++p)
-          s += 0.5 * store.mass[p] * store.velocity[p].norm_square();
+          if (excluded.empty() || !excluded[store.body_id[p]])
+            s += 0.5 * store.mass[p] * store.velocity[p].norm_square();
         return s;
       });
   e.strain = parallel::deterministic_sum<double>(

@@ -227,7 +227,8 @@ double GridTransfer<dim>::grid_to_particles(const ExplicitNewmark &newmark,
                particles.velocity[p], particles.acceleration[p], a, dt);
           particles.acceleration[p] = a;
           particles.position[p] += increment[p];
-          pw += particles.mass[p] * (body_force * increment[p]);
+          if (prescribed_body.empty() || !prescribed_body[particles.body_id[p]])
+            pw += particles.mass[p] * (body_force * increment[p]);
           const double move = increment[p].norm();
           if (!(move < max_move) || !std::isfinite(particles.velocity[p].norm_square()) ||
               !(particles.density[p] > 0))

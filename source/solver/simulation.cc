@@ -21,12 +21,14 @@ void Simulation<dim>::declare_parameters(ParameterHandler &prm,
 {
   ParameterCounts::declare_parameters(prm);
   RunParameters<dim>::declare_parameters(prm);
+  declare_scene_parameters<dim>(prm);
   BackgroundGrid<dim>::declare_parameters(prm);
   CrackSet<dim>::declare_parameters(prm);
   MaterialSet<dim>::declare_parameters(prm, counts.materials);
   FractureCoupling<dim>::declare_parameters(prm, counts.materials);
   ParticleGenerator<dim>::declare_parameters(prm, counts.bodies);
   NodeConstraints<dim>::declare_parameters(prm, counts.constraints);
+  BodyContact<dim>::declare_parameters(prm, counts.bodies);
   Probes<dim>::declare_parameters(prm, counts.probes);
   ExactSolution<dim>::declare_parameters(prm);
 }
@@ -35,9 +37,15 @@ template <int dim>
 Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts,
                             std::ostream &console)
     : console_stream(console), pcout(console, false), transfer(background, store),
-      crack_contact(cracks, transfer, store)
+      crack_contact(cracks, transfer, store), contact(background, transfer, store)
 {
   parameters.parse_parameters(prm);
+  {
+    SceneContext<dim> context;
+    context.thickness = parameters.thickness;
+    scene             = create_scene<dim>(prm, context);
+    scene->adjust(parameters);
+  }
   output_directory = parameters.directory;
   pcout.set_condition(parameters.verbosity > 0);
   newmark.gamma = parameters.newmark_gamma;
@@ -73,6 +81,22 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
   }
 
   constraints.parse_parameters(prm, counts.constraints, background);
+  {
+    std::vector<std::string> set_names;
+    for (unsigned int c = 0; c < constraints.size(); ++c)
+      set_names.push_back(constraints[c].name());
+    contact.parse_parameters(prm, counts.bodies, parameters.thickness,
+                             shape_function->support_radius(background), set_names);
+    if (contact.any_prescribed())
+    {
+      transfer.set_prescribed_bodies(contact.prescribed_bodies());
+      energy.set_excluded_bodies(contact.prescribed_bodies());
+    }
+    SceneState<dim> state;
+    state.particles  = &store;
+    state.body_names = &contact.body_names();
+    scene->check(state);
+  }
   peak_force.parse(parameters.peak_force_set, constraints);
   probes.parse_parameters(prm, counts.probes);
   exact.parse_parameters(prm);
@@ -171,8 +195,16 @@ void Simulation<dim>::initialise_accelerations()
                           { transfer.forces(b, e, parameters.body_force); });
   transfer.accelerations(mass_tolerance);
   const auto constrain = [&](std::vector<Tensor<1, dim>> &x)
-  { constraints.impose_accelerations(x, nodes.layout, t, derivative_step()); };
+  {
+    contact.impose_prescribed_accelerations(x, t, derivative_step());
+    constraints.impose_accelerations(x, nodes.layout, t, derivative_step());
+  };
   constrain(nodes.acceleration);
+  // Bodies that start in contact (a block resting on a slab) do not accelerate into
+  // each other.
+  transfer.predict_rates(newmark, 0, mass_tolerance);
+  contact.impose_prescribed_rates(nodes.rate, t);
+  contact.on_initial_accelerations(mass_tolerance);
   transfer.correct_towards_consistent_mass(nodes.acceleration, nodes.force,
                                            parameters.mass_corrections, mass_tolerance,
                                            constrain);
@@ -194,6 +226,8 @@ void Simulation<dim>::locate_and_sort()
   if (lost < store.size())
     abort_run(lost, "the particle left the background grid (enlarge the grid, or "
                     "the run is unstable: lower the CFL number)");
+  // Bodies get their own fields where their supports may meet.
+  contact.assign_fields(store, transfer.nodes().layout);
 }
 
 template <int dim>
@@ -201,10 +235,13 @@ void Simulation<dim>::particles_to_grid()
 {
   // Explicit cracks send the particle-node pairs that cross them to second fields.
   std::uint8_t *touched = cracks.empty() ? nullptr : crack_contact.touched(store.size());
-  transfer.particles_to_grid(
-      *shape_function, constraints.all_nodes(),
-      [&](const std::size_t b, const std::size_t e)
-      { cracks.separate(store, background, transfer.connectivity(), b, e, touched); });
+  transfer.particles_to_grid(*shape_function, constraints.all_nodes(),
+                             [&](const std::size_t b, const std::size_t e)
+                             {
+                               cracks.separate(store, background, transfer.connectivity(),
+                                               b, e, touched);
+                               contact.separate(transfer.connectivity(), b, e);
+                             });
 }
 
 template <int dim>
@@ -212,17 +249,26 @@ void Simulation<dim>::predict_displacement_rates(const double t_half)
 {
   NodalFields<dim> &nodes = transfer.nodes();
   transfer.predict_rates(newmark, dt, mass_tolerance);
+  const auto constrain = [&](std::vector<Tensor<1, dim>> &x)
+  {
+    contact.impose_prescribed_rates(x, t_half);
+    constraints.impose_rates(x, nodes.layout, t_half);
+  };
+  contact.impose_prescribed_rates(nodes.rate, t_half);
   crack_contact.on_rates(mass_tolerance);
   constraints.impose_rates(nodes.rate, nodes.layout, t_half);
-  if (parameters.mass_corrections == 0)
-    return;
-  nodes.for_active(
-      [&](const unsigned int I)
-      { nodes.rhs[I] = nodes.momentum[I] + (0.5 * dt) * nodes.mass_acceleration[I]; });
-  transfer.correct_towards_consistent_mass(
-      nodes.rate, nodes.rhs, parameters.mass_corrections, mass_tolerance,
-      [&](std::vector<Tensor<1, dim>> &x)
-      { constraints.impose_rates(x, nodes.layout, t_half); });
+  if (parameters.mass_corrections > 0)
+  {
+    nodes.for_active(
+        [&](const unsigned int I)
+        { nodes.rhs[I] = nodes.momentum[I] + (0.5 * dt) * nodes.mass_acceleration[I]; });
+    transfer.correct_towards_consistent_mass(
+        nodes.rate, nodes.rhs, parameters.mass_corrections, mass_tolerance, constrain);
+  }
+  // Contact between bodies last: constraints still win on their nodes.
+  contact.on_rates(mass_tolerance);
+  if (contact.n_contact_pairs() > 0)
+    constraints.impose_rates(nodes.rate, nodes.layout, t_half);
 }
 
 template <int dim>
@@ -260,16 +306,24 @@ const std::vector<Tensor<1, dim>> *Simulation<dim>::correct_accelerations()
 {
   NodalFields<dim> &nodes = transfer.nodes();
   transfer.accelerations(mass_tolerance);
+  contact.impose_prescribed_accelerations(nodes.acceleration, t + dt, derivative_step());
   crack_contact.on_accelerations(newmark, dt);
-  const auto constrain = [&](std::vector<Tensor<1, dim>> &x)
+  const auto impose = [&](std::vector<Tensor<1, dim>> &x)
   { constraints.impose_accelerations(x, nodes.layout, t + dt, derivative_step()); };
-  constrain(nodes.acceleration);
-  if (parameters.mass_corrections == 0)
-    return nullptr;
-  transfer.correct_towards_consistent_mass(nodes.acceleration, nodes.force,
-                                           parameters.mass_corrections, mass_tolerance,
-                                           constrain);
-  if (constraints.empty())
+  const auto constrain = [&](std::vector<Tensor<1, dim>> &x)
+  {
+    contact.impose_prescribed_accelerations(x, t + dt, derivative_step());
+    impose(x);
+  };
+  impose(nodes.acceleration);
+  if (parameters.mass_corrections > 0)
+    transfer.correct_towards_consistent_mass(nodes.acceleration, nodes.force,
+                                             parameters.mass_corrections, mass_tolerance,
+                                             constrain);
+  contact_work = contact.on_accelerations(newmark, dt);
+  if (contact.n_contact_pairs() > 0)
+    impose(nodes.acceleration);
+  if (parameters.mass_corrections == 0 || constraints.empty())
     return nullptr;
   // The reaction is what the constraint adds to the force: M a - f on its nodes.
   transfer.apply_consistent_mass(nodes.acceleration, nodes.rhs);
@@ -288,7 +342,7 @@ std::size_t Simulation<dim>::update_particles(
   std::size_t bad        = store.size();
   const double body_work = transfer.grid_to_particles(
       newmark, dt, parameters.body_force, 0.5 * background.min_spacing(), bad);
-  energy.add_external_work(work + body_work);
+  energy.add_external_work(work + body_work + contact_work);
   return bad;
 }
 
@@ -340,6 +394,7 @@ void Simulation<dim>::serialize(Archive &ar)
   if (ar.loading())
     resumed_history_size = history_size;
   constraints.serialize(ar);
+  contact.serialize(ar);
   auto particle_series = particle_output->series();
   auto grid_series     = grid_output->series();
   ar(particle_series, grid_series);
@@ -412,6 +467,7 @@ void Simulation<dim>::write_output_row()
   row << std::setprecision(10) << step_count << "," << t << ",";
   EnergyBalance<dim>::write_row(row, e);
   constraints.write_row(row);
+  contact.write_row(row, store);
   probes.write_row(row, store);
   exact.write_row(row, store, t);
   history.write_row(row.str());
@@ -440,6 +496,7 @@ void Simulation<dim>::prepare_output()
     header << "step,time,";
     EnergyBalance<dim>::write_header(header);
     constraints.write_header(header);
+    contact.write_header(header);
     probes.write_header(header);
     exact.write_header(header);
     history.create(output_directory, header.str());
@@ -524,6 +581,14 @@ RunSummary Simulation<dim>::summarise(const double wall)
   results["particle_steps_per_second"] = store.size() * double(step_count) / wall;
   results["max_energy_drift"]          = energy.max_drift();
   peak_force.add_results(results);
+  contact.add_results(results);
+  {
+    SceneState<dim> state;
+    state.particles  = &store;
+    state.body_names = &contact.body_names();
+    state.time       = t;
+    scene->add_results(state, results);
+  }
   exact.add_results(results);
   for (const auto &s : shape_function->statistics())
     results["shape_function_" + s.first] = s.second;

@@ -54,6 +54,10 @@ template <int dim>
 void parse_function(dealii::ParameterHandler &prm, const std::string &section,
                     dealii::Functions::ParsedFunction<dim> &f, const std::string &entry);
 
+/// True if a function expression uses x, y, z or t as a variable (a constant one can
+/// be evaluated once).
+bool depends_on_space_or_time(const std::string &expression);
+
 /// "Kind N" with N counted from 1, the name of a repeated subsection.
 std::string subsection_name(const std::string &kind, unsigned int i);
 } // namespace input

@@ -75,6 +75,12 @@ public:
       f(K);
   }
 
+  /// The tag of an extra field (invalid for a grid node's own field).
+  unsigned int tag_of(const unsigned int F) const
+  {
+    return F < n_grid ? invalid : tags[F - n_grid];
+  }
+
   /// The grid node a field belongs to.
   unsigned int node_of(const unsigned int F) const
   {

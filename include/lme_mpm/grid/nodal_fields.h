@@ -36,13 +36,15 @@ struct NodalFields
   /**
    * Zeroes what the last step wrote: the active fields and the fields of @p extra
    * grid nodes with all their extra fields (constraints write values on nodes that
-   * may hold no mass). Sizes the arrays to the layout first when it has changed.
+   * may hold no mass). The layout may only have gained fields since (they are
+   * appended); the arrays grow with it.
    */
   void clear(const std::vector<unsigned int> &extra)
   {
     const unsigned int n = layout.n_fields();
-    if (mass.size() != n)
+    if (mass.size() > n)
     {
+      // The layout was rebuilt smaller (a resumed run): start from scratch.
       mass.assign(n, 0.0);
       for (auto *v : vector_fields())
         v->assign(n, Tensor<1, dim>());
@@ -57,9 +59,24 @@ struct NodalFields
     };
     for_active(zero);
     for (const unsigned int I : extra)
+      if (I < mass.size())
+      {
+        zero(I);
+        layout.for_each_extra(I,
+                              [&](const unsigned int F)
+                              {
+                                if (F < mass.size())
+                                  zero(F);
+                              });
+      }
+    active.clear();
+    // A layout that gained fields (contact, a growing crack) keeps the old ones, so
+    // what was written last step is cleared above; the new fields start at zero.
+    if (mass.size() < n)
     {
-      zero(I);
-      layout.for_each_extra(I, zero);
+      mass.resize(n, 0.0);
+      for (auto *v : vector_fields())
+        v->resize(n, Tensor<1, dim>());
     }
   }
 
@@ -90,7 +107,8 @@ struct NodalFields
 private:
   std::array<std::vector<Tensor<1, dim>> *, 7> vector_fields()
   {
-    return {&momentum, &mass_acceleration, &rate, &force, &acceleration, &rhs, &scratch};
+    return {
+        {&momentum, &mass_acceleration, &rate, &force, &acceleration, &rhs, &scratch}};
   }
 };
 } // namespace lme_mpm

@@ -7,6 +7,7 @@
 #include <map>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace lme_mpm
 {
@@ -30,6 +31,9 @@ class EnergyBalance
 {
 public:
   void add_external_work(const double w) { external_work += w; }
+  /// Bodies (flag per body index) left out of the kinetic energy: those that move as
+  /// prescribed, whose motion is input (their work on the others is external work).
+  void set_excluded_bodies(const std::vector<std::uint8_t> &flags) { excluded = flags; }
   /// The energies now; sums independent of the thread count.
   Energies measure(const ParticleStore<dim> &particles,
                    const MaterialSet<dim> &materials) const;
@@ -49,6 +53,7 @@ public:
   }
 
 private:
+  std::vector<std::uint8_t> excluded;
   double external_work = 0, initial_total_energy = 0, energy_scale = 0,
          max_energy_drift = 0;
 };

@@ -79,6 +79,13 @@ public:
                            const Tensor<1, dim> &body_force, double max_move,
                            std::size_t &bad);
 
+  /// Bodies (flag per body index) whose motion is prescribed: the body force does no
+  /// work on them.
+  void set_prescribed_bodies(const std::vector<std::uint8_t> &flags)
+  {
+    prescribed_body = flags;
+  }
+
   /// The particles' accelerations from the nodal ones (no other update): the start
   /// of the scheme.
   void interpolate_accelerations();
@@ -193,6 +200,7 @@ private:
   unsigned int slab_below = 0, slab_above = 0;
   /// Per particle: the displacement increment of the step.
   std::vector<Tensor<1, dim>> increment;
+  std::vector<std::uint8_t> prescribed_body;
   /// Per particle: scratch of the consistent-mass product.
   std::vector<Tensor<1, dim>> particle_scratch;
 };

@@ -7,6 +7,7 @@
 
 #include <lme_mpm/base/archive.h>
 #include <lme_mpm/boundary/node_constraints.h>
+#include <lme_mpm/contact/body_contact.h>
 #include <lme_mpm/fracture/crack_set.h>
 #include <lme_mpm/fracture/fracture_coupling.h>
 #include <lme_mpm/grid/background_grid.h>
@@ -20,6 +21,7 @@
 #include <lme_mpm/output/probes.h>
 #include <lme_mpm/output/run_summary.h>
 #include <lme_mpm/particles/particle_store.h>
+#include <lme_mpm/scenes/scene.h>
 #include <lme_mpm/shape_functions/shape_function.h>
 #include <lme_mpm/solver/crack_face_contact.h>
 #include <lme_mpm/solver/explicit_newmark.h>
@@ -119,6 +121,7 @@ private:
   std::ostream &console_stream;
   ConditionalOStream pcout;
   RunParameters<dim> parameters;
+  std::unique_ptr<Scene<dim>> scene;
   std::string output_directory;
 
   BackgroundGrid<dim> background;
@@ -130,6 +133,9 @@ private:
   NodeConstraints<dim> constraints;
   GridTransfer<dim> transfer;
   CrackFaceContact<dim> crack_contact;
+  BodyContact<dim> contact;
+  /// Work the prescribed bodies did on the others in the current step.
+  double contact_work = 0;
 
   ExplicitNewmark newmark;
   double dt = 0, t = 0;
