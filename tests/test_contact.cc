@@ -230,6 +230,8 @@ TEST(Contact, BadInputNamesTheEntry)
             std::string::npos);
   EXPECT_NE(error({"Contact/Contact volume fraction=0"}).find("Contact volume fraction"),
             std::string::npos);
+  EXPECT_NE(error({"Cracks/Polylines=0.5, 0.12, 0.6, 0.12"}).find("Contact/Type"),
+            std::string::npos);
 }
 
 namespace

@@ -185,7 +185,8 @@ void BodyContact<dim>::parse_parameters(ParameterHandler &prm,
     const std::string &n = names[b];
     AssertThrow(
         std::all_of(n.begin(), n.end(),
-                    [](char c) { return std::isalnum(c) || c == '_'; }),
+                    [](const char c)
+                    { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }),
         ExcBadInput(section + "/Name", "'" + n + "' must be letters, digits or '_'"));
     if (n.empty())
       continue;
@@ -251,6 +252,17 @@ Tensor<1, dim> BodyContact<dim>::prescribed_velocity(const unsigned int b,
     }
   }
   return v;
+}
+
+template <int dim>
+void BodyContact<dim>::set_prescribed_velocities(ParticleStore<dim> &store,
+                                                 const double t) const
+{
+  if (n_prescribed == 0)
+    return;
+  for (std::size_t p = 0; p < store.size(); ++p)
+    if (prescribed[store.body_id[p]])
+      store.velocity[p] = prescribed_velocity(store.body_id[p], store.position[p], t);
 }
 
 template <int dim>
@@ -344,7 +356,10 @@ void BodyContact<dim>::separate(Connectivity<dim> &conn, const std::size_t begin
       if (I >= n_grid) // a crack's second field: stays with the cracked body
         continue;
       const std::uint32_t m = node_bodies[I];
-      Assert(m & (std::uint32_t(1) << body), ExcInternalError());
+      AssertThrow(
+          m & (std::uint32_t(1) << body),
+          ExcMessage("a support reaches past the shape function's support radius: "
+                     "contact cannot give this particle its body's field"));
       if ((m & (m - 1)) == 0)
         continue;
       t = 1;
@@ -468,7 +483,12 @@ void BodyContact<dim>::on_rates(const double mass_tolerance)
     {
       ijk[d] = rest / grid.node_stride(d);
       rest -= ijk[d] * grid.node_stride(d);
-      node_volume *= grid.nodal_spacing(d, ijk[d]);
+      // The node's share of its cells: half of each cell beside it (half a cell at
+      // a grid face, where a full one would keep contact from ever starting).
+      const auto &c      = grid.coordinates(d);
+      const double below = ijk[d] > 0 ? c[ijk[d]] - c[ijk[d] - 1] : 0.0;
+      const double above = ijk[d] + 1 < c.size() ? c[ijk[d] + 1] - c[ijk[d]] : 0.0;
+      node_volume *= 0.5 * (below + above);
     }
     if (volume < volume_fraction * node_volume)
       continue;
@@ -594,7 +614,8 @@ void BodyContact<dim>::exchange(std::vector<Tensor<1, dim>> &x, const Velocity &
       x[pair.a] += impulse_on_a / (ma * scale);
     if (!fixed_b)
       x[pair.b] -= impulse_on_a / (mb * scale);
-    record(pair, impulse_on_a, stick && approach > 0);
+    // Only a frictional pair is held: a frictionless one has no tangential bond.
+    record(pair, impulse_on_a, stick && approach > 0 && pair.friction > 0);
   }
 }
 

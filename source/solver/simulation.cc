@@ -91,7 +91,12 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
     {
       transfer.set_prescribed_bodies(contact.prescribed_bodies());
       energy.set_excluded_bodies(contact.prescribed_bodies());
+      contact.set_prescribed_velocities(store, 0);
     }
+    // Explicit crack fields belong to one body; with fields per body they would mix.
+    AssertThrow(cracks.empty() || !contact.active(),
+                ExcBadInput("Contact/Type", "multi-field contact and explicit cracks "
+                                            "(Cracks) cannot be combined yet"));
     SceneState<dim> state;
     state.particles  = &store;
     state.body_names = &contact.body_names();
@@ -200,14 +205,16 @@ void Simulation<dim>::initialise_accelerations()
     constraints.impose_accelerations(x, nodes.layout, t, derivative_step());
   };
   constrain(nodes.acceleration);
-  // Bodies that start in contact (a block resting on a slab) do not accelerate into
-  // each other.
-  transfer.predict_rates(newmark, 0, mass_tolerance);
-  contact.impose_prescribed_rates(nodes.rate, t);
-  contact.on_initial_accelerations(mass_tolerance);
   transfer.correct_towards_consistent_mass(nodes.acceleration, nodes.force,
                                            parameters.mass_corrections, mass_tolerance,
                                            constrain);
+  // Bodies that start in contact (a block resting on a slab) do not accelerate into
+  // each other (after the mass corrections, which would undo it).
+  transfer.predict_rates(newmark, 0, mass_tolerance);
+  contact.impose_prescribed_rates(nodes.rate, t);
+  contact.on_initial_accelerations(mass_tolerance);
+  if (contact.n_contact_pairs() > 0)
+    constrain(nodes.acceleration);
   transfer.interpolate_accelerations();
   accelerations_initialised = true;
 }

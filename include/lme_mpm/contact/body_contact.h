@@ -117,7 +117,13 @@ public:
   void serialize(Archive &ar)
   {
     ar(peak_force, stuck_pairs);
+    AssertThrow(peak_force.size() == n_bodies,
+                ExcMessage("the checkpoint holds another number of bodies"));
   }
+
+  /// Gives the particles of prescribed bodies their prescribed velocity at @p t (their
+  /// initial velocity entry is not used).
+  void set_prescribed_velocities(ParticleStore<dim> &store, double t) const;
 
   /// Nodes that carried more than one body's field in the last step.
   std::size_t n_shared_nodes() const { return shared_nodes.size(); }
