@@ -76,6 +76,11 @@ const std::vector<BadInput> bad_inputs = {
     {{"Output/Verbosity=5"}, "Output/Verbosity"},
     {{"Verification/Exact velocity/Function expression=foo(x); 0"}, "Exact velocity"},
     {{"no equals sign"}, "expected 'Subsection/Entry=value'"},
+    {{"Additional shared libraries=/nonexistent/libplugins.so"},
+     "'Additional shared libraries': cannot load '/nonexistent/libplugins.so': "},
+    // A file that exists but is no shared library: the loader's own reason is kept.
+    {{"Additional shared libraries=" LME_MPM_SOURCE_DIR "/README.md"},
+     "README.md': " LME_MPM_SOURCE_DIR "/README.md: "},
     {{"Material 1/Fracture/Model=eigenerosion",
       "Material 1/Fracture/Energy release factor=0"},
      "Energy release factor"},

@@ -1,4 +1,5 @@
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/base/plugin_libraries.h>
 #include <lme_mpm/solver/run.h>
 #include <lme_mpm/solver/simulation.h>
 
@@ -95,13 +96,17 @@ run_parameter_file(const std::string &file, const std::vector<std::string> &over
 {
   AssertThrow(std::filesystem::exists(file),
               ExcBadInput("parameter file", "'" + file + "' does not exist"));
-  // First pass: how many materials, bodies, ... the file declares.
+  // First pass: the plug-in libraries to load (their names must be known before the
+  // selection entries are declared) and how many materials, bodies, ... the file
+  // declares.
   ParameterCounts counts;
   {
     ParameterHandler prm;
     ParameterCounts::declare_parameters(prm);
+    PluginLibraries::declare_parameters(prm);
     prm.parse_input(file, "", true, false);
     apply_overrides(prm, overrides, true);
+    PluginLibraries::load(PluginLibraries::parse_parameters(prm));
     counts.parse_parameters(prm);
   }
   if (counts.dim == 2)

@@ -3,6 +3,7 @@
 #include <lme_mpm/base/format.h>
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/base/parallel.h>
+#include <lme_mpm/base/plugin_libraries.h>
 #include <lme_mpm/geometry/particle_generator.h>
 #include <lme_mpm/solver/checkpoint.h>
 #include <lme_mpm/solver/simulation.h>
@@ -20,6 +21,7 @@ void Simulation<dim>::declare_parameters(ParameterHandler &prm,
                                          const ParameterCounts &counts)
 {
   ParameterCounts::declare_parameters(prm);
+  PluginLibraries::declare_parameters(prm);
   RunParameters<dim>::declare_parameters(prm);
   declare_scene_parameters<dim>(prm);
   BackgroundGrid<dim>::declare_parameters(prm);
