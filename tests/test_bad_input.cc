@@ -69,6 +69,7 @@ const std::vector<BadInput> bad_inputs = {
     {{"Boundary conditions/Constraint 1/Velocity/Function expression=0"}, "Velocity"},
     {{"Problem/Thickness=0"}, "Problem/Thickness"},
     {{"Problem/Body force=0"}, "Problem/Body force"},
+    {{"Problem/Body force ramp time=-1"}, "Problem/Body force ramp time"},
     {{"Problem/Plane assumption=axisymmetric"}, "Plane assumption"},
     {{"Problem/Number of bodies=2"}, "Body 2/Shape"},
     {{"Problem/Dimension=4"}, "Problem/Dimension"},

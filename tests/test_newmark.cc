@@ -159,6 +159,43 @@ TEST(NewmarkStart, FreeFallIsExact)
   EXPECT_LT(max_dv, 1e-10);
 }
 
+TEST(NewmarkStart, RampedFreeFallIsExact)
+{
+  // Gravity ramped up over t_r (Problem/Body force ramp time): the acceleration is
+  // piecewise linear in time, the fall a cubic and then a parabola. The trapezoidal
+  // rule integrates the velocity exactly; the position update u + dt v + dt^2/2 a
+  // misses dt^3/6 of the jerk g/t_r on each step of the ramp, t_r dt^2 (g/t_r) / 6 =
+  // g dt^2 / 6 in all: the displacement must be off by exactly that.
+  std::ostringstream quiet;
+  const double g = -10, ramp = 0.1;
+  auto sim =
+      block("subsection Problem\n  set Body force = 0, -10\n"
+            "  set Body force ramp time = 0.1\nend\n"
+            "subsection Grid\n  set Lower corner = 0, -1\n"
+            "  set Upper corner = 1, 1\n  set Cell size = 0.1\nend\n"
+            "subsection Body 1\n  set Shape = rectangle(0.3, 0.5, 0.7, 0.9)\nend\n"
+            "subsection Time\n  set End time = 0.25\n  set Time step = 1e-3\nend\n",
+            0, quiet);
+  sim->run();
+  const double t = sim->time();
+  ASSERT_NEAR(t, 0.25, 1e-14);
+  const double u_exact = g * (0.5 * t * t - 0.5 * t * ramp + ramp * ramp / 6),
+               v_exact = g * (t - 0.5 * ramp);
+  const double dt = 1e-3, truncation = -g * dt * dt / 6;
+  const auto &store = sim->particles();
+  double max_du = 0, max_dv = 0;
+  for (std::size_t p = 0; p < store.size(); ++p)
+  {
+    const double u = store.position[p][1] - store.reference_position[p][1];
+    max_du         = std::max(max_du, std::abs((u - u_exact) / truncation - 1));
+    max_dv         = std::max(max_dv, std::abs(store.velocity[p][1] / v_exact - 1));
+  }
+  std::cout << "ramped fall: displacement error / (g dt^2 / 6) - 1 at most " << max_du
+            << ", relative velocity error " << max_dv << "\n";
+  EXPECT_LT(max_du, 1e-6);
+  EXPECT_LT(max_dv, 1e-10);
+}
+
 TEST(NewmarkStart, GravityLoadedColumnConvergesAtSecondOrderInTime)
 {
   // The same grid and particles at three time steps: the differences between

@@ -12,7 +12,8 @@ namespace scenes
  * the incline angle from the slab's normal (+y): the inclined-plane problem without
  * tilting the grid. Reports the block's mass-weighted mean displacement along the
  * slab, which with Coulomb friction mu is 0.5 g (sin theta - mu cos theta) t^2 while
- * tan theta > mu, and zero otherwise.
+ * tan theta > mu, and zero otherwise (sliding_distance_exact, which also follows a
+ * gravity ramp, Problem/Body force ramp time).
  */
 template <int dim>
 class SlidingBlock : public Scene<dim>
@@ -34,6 +35,12 @@ public:
     angle   = prm.get_double("Incline angle");
     gravity = prm.get_double("Gravity");
     block   = input::trim(prm.get("Block"));
+    // The exact distance needs the block's friction (Contact/Friction coefficient).
+    prm.leave_subsection();
+    prm.enter_subsection("Contact");
+    friction = prm.get_double("Friction coefficient");
+    prm.leave_subsection();
+    prm.enter_subsection("Scene");
     input::require_range(angle, 0, 90, false, "Scene/Incline angle");
     AssertThrow(angle < 90,
                 ExcBadInput("Scene/Incline angle", "must be below 90 degrees"));
@@ -51,6 +58,7 @@ public:
     run.body_force     = Tensor<1, dim>();
     run.body_force[0]  = gravity * std::sin(theta);
     run.body_force[1]  = -gravity * std::cos(theta);
+    ramp               = run.body_force_ramp;
   }
 
   void check(const SceneState<dim> &state) const override { (void)block_index(state); }
@@ -67,7 +75,27 @@ public:
         moment += p.mass[i] * (p.position[i][0] - p.reference_position[i][0]);
         mass += p.mass[i];
       }
-    results["sliding_distance"] = moment / mass;
+    results["sliding_distance"]       = moment / mass;
+    results["sliding_distance_exact"] = exact_distance(state.time);
+  }
+
+  /**
+   * The rigid block's distance at time @p T under gravity that grows linearly over
+   * the ramp time t_r (Problem/Body force ramp time): with a = g (sin theta - mu cos
+   * theta) > 0 the block slides from the start, x = a t^3 / (6 t_r) during the ramp
+   * and a (T^2 / 2 - T t_r / 2 + t_r^2 / 6) after it; 0 if a <= 0.
+   */
+  double exact_distance(const double T) const
+  {
+    const double theta = angle * M_PI / 180;
+    const double a     = gravity * (std::sin(theta) - friction * std::cos(theta));
+    if (!(a > 0))
+      return 0;
+    if (ramp <= 0)
+      return 0.5 * a * T * T;
+    if (T <= ramp)
+      return a * T * T * T / (6 * ramp);
+    return a * (0.5 * T * T - 0.5 * T * ramp + ramp * ramp / 6);
   }
 
 private:
@@ -81,7 +109,8 @@ private:
     return 0;
   }
 
-  double angle = 30, gravity = 9.81;
+  double angle = 30, gravity = 9.81, friction = 0;
+  mutable double ramp = 0;
   std::string block;
 };
 } // namespace scenes

@@ -51,6 +51,11 @@ void RunParameters<dim>::entries(EntryList &list)
   list.add("Body force", body_force_text, "0, 0, 0", Patterns::Anything(),
            "Body force per unit mass (m/s^2), dim components (extra ones "
            "ignored), for example '0, -9.81'.");
+  list.add("Body force ramp time", body_force_ramp, "0", Patterns::Double(0),
+           "The body force grows linearly from zero to its full value over this "
+           "time (s): a load applied over many periods of the specimen's slowest "
+           "vibration starts it quasi-statically, where a sudden one sets it ringing. "
+           "0: in full from the start.");
   list.leave();
 
   list.enter("Time");
@@ -140,6 +145,7 @@ void RunParameters<dim>::parse_parameters(ParameterHandler &prm)
                           "needs at least " + std::to_string(dim) + " components"));
   for (unsigned int d = 0; d < dim; ++d)
     body_force[d] = g[d];
+  input::require_range(body_force_ramp, 0, 1e300, false, "Problem/Body force ramp time");
   input::require_range(end_time, 0, 1e300, true, "Time/End time");
 }
 

@@ -198,8 +198,9 @@ void Simulation<dim>::initialise_accelerations()
   NodalFields<dim> &nodes = transfer.nodes();
   locate_and_sort();
   particles_to_grid();
+  const Tensor<1, dim> body_force = parameters.body_force_at(t);
   transfer.scatter_chunks([&](const std::size_t b, const std::size_t e)
-                          { transfer.forces(b, e, parameters.body_force); });
+                          { transfer.forces(b, e, body_force); });
   transfer.accelerations(mass_tolerance);
   const auto constrain = [&](std::vector<Tensor<1, dim>> &x)
   {
@@ -283,8 +284,9 @@ void Simulation<dim>::predict_displacement_rates(const double t_half)
 template <int dim>
 void Simulation<dim>::update_stresses_and_forces()
 {
-  const Tensor<1, dim> &body_force = parameters.body_force;
-  const auto stresses              = [&](const std::size_t b, const std::size_t e)
+  // The forces of the end of the step.
+  const Tensor<1, dim> body_force = parameters.body_force_at(t + dt);
+  const auto stresses             = [&](const std::size_t b, const std::size_t e)
   { materials.update_stress(store, b, e); };
   if (fracture.active())
   {
@@ -348,9 +350,11 @@ std::size_t Simulation<dim>::update_particles(
       constraints.update_reactions(nodes.layout, nodes.mass, nodes.acceleration,
                                    nodes.force, mass_times_acceleration, nodes.rate, dt);
   peak_force.update(constraints);
-  std::size_t bad        = store.size();
-  const double body_work = transfer.grid_to_particles(
-      newmark, dt, parameters.body_force, 0.5 * background.min_spacing(), bad);
+  std::size_t bad = store.size();
+  // Under a ramp, the body force of the middle of the step does its work.
+  const double body_work =
+      transfer.grid_to_particles(newmark, dt, parameters.body_force_at(t + 0.5 * dt),
+                                 0.5 * background.min_spacing(), bad);
   energy.add_external_work(work + body_work + contact_work);
   return bad;
 }

@@ -41,6 +41,15 @@ struct RunParameters
   double thickness  = 1;
   bool plane_stress = false;
   Tensor<1, dim> body_force;
+  /// The body force grows linearly from zero to body_force over this time (s; 0:
+  /// applied in full from the start).
+  double body_force_ramp = 0;
+  /// The body force at time @p t (exactly body_force once the ramp is over).
+  Tensor<1, dim> body_force_at(const double t) const
+  {
+    return body_force_ramp > 0 && t < body_force_ramp ? body_force * (t / body_force_ramp)
+                                                      : body_force;
+  }
   // Time
   double end_time = 1, cfl = 0.3, fixed_time_step = 0, max_cfl = 1, newmark_gamma = 0.5;
   unsigned int mass_corrections = 0, max_steps = 0;
