@@ -58,7 +58,6 @@ public:
     run.body_force     = Tensor<1, dim>();
     run.body_force[0]  = gravity * std::sin(theta);
     run.body_force[1]  = -gravity * std::cos(theta);
-    ramp               = run.body_force_ramp;
   }
 
   void check(const SceneState<dim> &state) const override { (void)block_index(state); }
@@ -75,17 +74,18 @@ public:
         moment += p.mass[i] * (p.position[i][0] - p.reference_position[i][0]);
         mass += p.mass[i];
       }
-    results["sliding_distance"]       = moment / mass;
-    results["sliding_distance_exact"] = exact_distance(state.time);
+    results["sliding_distance"] = moment / mass;
+    results["sliding_distance_exact"] =
+        exact_distance(state.time, state.run->body_force_ramp);
   }
 
   /**
    * The rigid block's distance at time @p T under gravity that grows linearly over
-   * the ramp time t_r (Problem/Body force ramp time): with a = g (sin theta - mu cos
-   * theta) > 0 the block slides from the start, x = a t^3 / (6 t_r) during the ramp
-   * and a (T^2 / 2 - T t_r / 2 + t_r^2 / 6) after it; 0 if a <= 0.
+   * the ramp time t_r = @p ramp (Problem/Body force ramp time): with a = g (sin theta -
+   * mu cos theta) > 0 the block slides from the start, x = a t^3 / (6 t_r) during the
+   * ramp and a (T^2 / 2 - T t_r / 2 + t_r^2 / 6) after it; 0 if a <= 0.
    */
-  double exact_distance(const double T) const
+  double exact_distance(const double T, const double ramp) const
   {
     const double theta = angle * M_PI / 180;
     const double a     = gravity * (std::sin(theta) - friction * std::cos(theta));
@@ -110,7 +110,6 @@ private:
   }
 
   double angle = 30, gravity = 9.81, friction = 0;
-  mutable double ramp = 0;
   std::string block;
 };
 } // namespace scenes

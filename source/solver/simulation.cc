@@ -99,10 +99,7 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
     AssertThrow(cracks.empty() || !contact.active(),
                 ExcBadInput("Contact/Type", "multi-field contact and explicit cracks "
                                             "(Cracks) cannot be combined yet"));
-    SceneState<dim> state;
-    state.particles  = &store;
-    state.body_names = &contact.body_names();
-    scene->check(state);
+    scene->check(scene_state());
   }
   peak_force.parse(parameters.peak_force_set, constraints);
   probes.parse_parameters(prm, counts.probes);
@@ -220,6 +217,17 @@ void Simulation<dim>::initialise_accelerations()
     constrain(nodes.acceleration);
   transfer.interpolate_accelerations();
   accelerations_initialised = true;
+}
+
+template <int dim>
+SceneState<dim> Simulation<dim>::scene_state() const
+{
+  SceneState<dim> state;
+  state.particles  = &store;
+  state.body_names = &contact.body_names();
+  state.run        = &parameters;
+  state.time       = t;
+  return state;
 }
 
 template <int dim>
@@ -595,13 +603,7 @@ RunSummary Simulation<dim>::summarise(const double wall)
   results["max_energy_drift"]          = energy.max_drift();
   peak_force.add_results(results);
   contact.add_results(results);
-  {
-    SceneState<dim> state;
-    state.particles  = &store;
-    state.body_names = &contact.body_names();
-    state.time       = t;
-    scene->add_results(state, results);
-  }
+  scene->add_results(scene_state(), results);
   exact.add_results(results);
   for (const auto &s : shape_function->statistics())
     results["shape_function_" + s.first] = s.second;

@@ -27,7 +27,9 @@ struct SceneState
   const ParticleStore<dim> *particles = nullptr;
   /// "Body N/Name" per body (empty where unnamed).
   const std::vector<std::string> *body_names = nullptr;
-  double time                                = 0;
+  /// The run's parameters, as adjust() left them.
+  const RunParameters<dim> *run = nullptr;
+  double time                   = 0;
 };
 
 /**

@@ -100,6 +100,8 @@ private:
   std::size_t
   update_particles(const std::vector<Tensor<1, dim>> *mass_times_acceleration);
   void abort_unstable(std::size_t p) const;
+  /// What the scene sees of the run now.
+  SceneState<dim> scene_state() const;
   /// Half-width of the central difference that gives prescribed accelerations.
   double derivative_step() const { return 1e-3 * dt; }
 
