@@ -227,6 +227,8 @@ void BodyContact<dim>::parse_parameters(ParameterHandler &prm,
   }
   contact_force.assign(n_bodies, Tensor<1, dim>());
   peak_force.assign(n_bodies, 0.0);
+  impulse.assign(n_bodies * dim, 0.0);
+  mean_force.assign(n_bodies, Tensor<1, dim>());
 }
 
 template <int dim>
@@ -565,7 +567,9 @@ double BodyContact<dim>::on_accelerations(const ExplicitNewmark &newmark, const 
           work -= dt * (force * nodes.rate[pair.a]);
       });
   for (unsigned int b = 0; b < n_bodies; ++b)
-    peak_force[b] = std::max(peak_force[b], contact_force[b].norm());
+    for (unsigned int d = 0; d < dim; ++d)
+      impulse[b * dim + d] += dt * contact_force[b][d];
+  impulse_time += dt;
   return work;
 }
 
@@ -639,7 +643,20 @@ void BodyContact<dim>::write_header(std::ostream &out) const
 template <int dim>
 void BodyContact<dim>::write_row(std::ostream &out, const ParticleStore<dim> &store)
 {
-  bool any = false;
+  // The mean since the last row (the first row has no step behind it).
+  for (unsigned int b = 0; b < n_bodies; ++b)
+  {
+    Tensor<1, dim> mean = contact_force[b];
+    if (impulse_time > 0)
+      for (unsigned int d = 0; d < dim; ++d)
+        mean[d] = impulse[b * dim + d] / impulse_time;
+    mean_force[b] = mean;
+    if (active())
+      peak_force[b] = std::max(peak_force[b], mean.norm());
+  }
+  std::fill(impulse.begin(), impulse.end(), 0.0);
+  impulse_time = 0;
+  bool any     = false;
   for (const auto &n : names)
     any = any || !n.empty();
   if (!any)
@@ -658,7 +675,7 @@ void BodyContact<dim>::write_row(std::ostream &out, const ParticleStore<dim> &st
       continue;
     if (active())
       for (unsigned int d = 0; d < dim; ++d)
-        out << "," << contact_force[b][d];
+        out << "," << mean_force[b][d];
     for (unsigned int d = 0; d < dim; ++d)
       out << "," << (mass[b] > 0 ? moment[b][d] / mass[b] : 0.0);
   }

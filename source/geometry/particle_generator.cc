@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <memory>
 #include <sstream>
 
@@ -41,7 +42,7 @@ template <int dim>
 struct BodyEntries
 {
   unsigned int material = 1, particles_per_cell = 2;
-  std::string shape, holes, placement;
+  std::string shape, holes, placement, zones;
 
   void entries(EntryList &list)
   {
@@ -55,6 +56,12 @@ struct BodyEntries
     list.add("Holes", holes, "", Patterns::Anything(),
              "Regions removed from the shape (notches, holes), separated by "
              "';', in the same form as 'Shape'.");
+    list.add("Material zones", zones, "", Patterns::Anything(),
+             "Regions of the body made of another material, 'M: shape' separated "
+             "by ';' (M the number of a 'Material N', the shape in the form of "
+             "'Shape'); a later zone wins where zones overlap. The body stays one "
+             "body (one velocity field, one fracture neighbourhood): for example "
+             "concrete kept elastic where a support or a strip presses it.");
     list.add("Particle placement", placement, "gauss",
              Patterns::Selection("gauss|uniform"),
              "'gauss': particles at the Gauss points of each cell (the paper's "
@@ -111,6 +118,26 @@ ParticleGenerator<dim>::fill(ParameterHandler &prm, const unsigned int n_bodies,
     std::vector<std::unique_ptr<Geometry<dim>>> holes;
     for (const auto &h : input::split(in.holes, ';'))
       holes.push_back(geometries.create(h, body.section + "/Holes"));
+    std::vector<std::pair<unsigned int, std::unique_ptr<Geometry<dim>>>> zones;
+    for (const auto &z : input::split(in.zones, ';'))
+    {
+      const std::string entry = body.section + "/Material zones";
+      const auto colon        = z.find(':');
+      AssertThrow(colon != std::string::npos,
+                  ExcBadInput(entry, "'" + z + "' is not of the form 'M: shape'"));
+      const std::string number = input::trim(z.substr(0, colon));
+      char *end                = nullptr;
+      const long m             = std::strtol(number.c_str(), &end, 10);
+      AssertThrow(!number.empty() && *end == '\0' && m >= 1 &&
+                      static_cast<std::size_t>(m) <= densities.size(),
+                  ExcBadInput(entry, "'" + number +
+                                         "' must be the number of a material, 1 to "
+                                         "Problem/Number of materials = " +
+                                         std::to_string(densities.size())));
+      zones.emplace_back(static_cast<unsigned int>(m - 1),
+                         geometries.create(z.substr(colon + 1), entry));
+      body.zone_materials.push_back(static_cast<unsigned int>(m - 1));
+    }
     body.particles_per_cell      = in.particles_per_cell;
     const bool uniform_placement = in.placement == "uniform";
     Functions::ParsedFunction<dim> velocity(dim);
@@ -142,7 +169,6 @@ ParticleGenerator<dim>::fill(ParameterHandler &prm, const unsigned int n_bodies,
     const Quadrature<1> &rule = uniform_placement
                                     ? static_cast<const Quadrature<1> &>(uniform_rule)
                                     : static_cast<const Quadrature<1> &>(gauss_rule);
-    const double rho          = densities[body.material];
     const std::size_t before  = store.size();
     {
       // At most this many particles, before any is allocated (about 600 bytes each
@@ -176,6 +202,11 @@ ParticleGenerator<dim>::fill(ParameterHandler &prm, const unsigned int n_bodies,
                   keep = keep && !h->inside(x);
                 if (!keep)
                   return;
+                unsigned int material = body.material;
+                for (const auto &zone : zones)
+                  if (zone.second->inside(x))
+                    material = zone.first;
+                const double rho = densities[material];
                 AssertThrow(std::isfinite(rho * volume) && rho * volume > 0,
                             ExcBadInput(body.section,
                                         "a particle's volume " + format_double(volume) +
@@ -184,8 +215,7 @@ ParticleGenerator<dim>::fill(ParameterHandler &prm, const unsigned int n_bodies,
                                             " kg (from the cell size, Problem/Thickness "
                                             "and the material's Density) must be "
                                             "finite and positive"));
-                const std::size_t p =
-                    store.add(x, rho * volume, volume, body.material, b);
+                const std::size_t p = store.add(x, rho * volume, volume, material, b);
                 for (unsigned int d = 0; d < dim; ++d)
                 {
                   store.velocity[p][d] = velocity.value(x, d);

@@ -67,6 +67,41 @@ protected:
 };
 
 /**
+ * Circular cylinder along z: axis (cx, cy), radius, and in 3D the end planes z0 < z1.
+ * In 2D the disc, so that one scene description serves both.
+ */
+template <int dim>
+class Cylinder : public Geometry<dim>
+{
+public:
+  explicit Cylinder(const std::vector<double> &a)
+      : cx(a[0]), cy(a[1]), r(a[2]), z0(dim == 3 ? a[3] : 0), z1(dim == 3 ? a[4] : 0)
+  {
+    if (!(r > 0))
+      throw std::invalid_argument("cylinder: the radius must be positive");
+    if (dim == 3 && !(z1 > z0))
+      throw std::invalid_argument("cylinder: z1 must exceed z0");
+  }
+  bool inside(const Point<dim> &x) const override
+  {
+    const double dx = x[0] - cx, dy = x[1] - cy;
+    return dx * dx + dy * dy <= r * r &&
+           (dim < 3 || (x[dim - 1] >= z0 && x[dim - 1] <= z1));
+  }
+  BoundingBox<dim> bounding_box() const override
+  {
+    Point<dim> lo, hi;
+    lo[0] = cx - r, hi[0] = cx + r, lo[1] = cy - r, hi[1] = cy + r;
+    if (dim == 3)
+      lo[dim - 1] = z0, hi[dim - 1] = z1;
+    return BoundingBox<dim>({lo, hi});
+  }
+
+private:
+  double cx, cy, r, z0, z1;
+};
+
+/**
  * Half disc: centre of the flat edge, radius, and the direction (degrees from +x in
  * the x-y plane) of the curved side. In 3D a half cylinder along z, unbounded in z.
  */
@@ -154,6 +189,10 @@ GeometryRegistry<dim> &GeometryRegistry<dim>::instance()
     registry.add("disc",
                  {dim + 1, dim == 2 ? "disc(cx, cy, r)" : "disc(cx, cy, cz, r): a ball",
                   make<dim, Ball<dim>>()});
+    registry.add("cylinder", {dim == 2 ? 3u : 5u,
+                              dim == 2 ? "cylinder(cx, cy, r): the disc"
+                                       : "cylinder(cx, cy, r, z0, z1): axis along z",
+                              make<dim, Cylinder<dim>>()});
     registry.add("half_disc",
                  {4,
                   "half_disc(cx, cy, r, angle): flat edge through (cx, cy), curved "

@@ -44,26 +44,53 @@ void RunSummary::write(const std::string &file, const std::string &shape_functio
   std::ofstream(file) << json.dump(2) << '\n';
 }
 
+namespace
+{
+/**
+ * Particles as CSV rows 'id[,body],x0,x1,...,x0_0,x0_1,...,damage' (current, then
+ * reference position), those for which @p keep holds, with @p damage as the last
+ * column.
+ */
+template <int dim, class Keep, class Damage>
+void write_particle_points(const std::string &file, const ParticleStore<dim> &store,
+                           const bool with_body, const Keep &keep, const Damage &damage)
+{
+  std::ofstream out(file);
+  out << (with_body ? "id,body" : "id");
+  for (unsigned int d = 0; d < dim; ++d)
+    out << ",x" << d;
+  for (unsigned int d = 0; d < dim; ++d)
+    out << ",x0_" << d;
+  out << ",damage\n" << std::setprecision(10);
+  for (std::size_t p = 0; p < store.size(); ++p)
+    if (keep(p))
+    {
+      out << store.id[p];
+      if (with_body)
+        out << ',' << store.body_id[p];
+      for (unsigned int d = 0; d < dim; ++d)
+        out << ',' << store.position[p][d];
+      for (unsigned int d = 0; d < dim; ++d)
+        out << ',' << store.reference_position[p][d];
+      out << ',' << damage(p) << '\n';
+    }
+}
+} // namespace
+
 template <int dim>
 void write_failed_particles(const std::string &file, const ParticleStore<dim> &store)
 {
-  std::ofstream crack(file);
-  crack << "id";
-  for (unsigned int d = 0; d < dim; ++d)
-    crack << ",x" << d;
-  for (unsigned int d = 0; d < dim; ++d)
-    crack << ",x0_" << d;
-  crack << ",damage\n" << std::setprecision(10);
-  for (std::size_t p = 0; p < store.size(); ++p)
-    if (store.failed[p])
-    {
-      crack << store.id[p];
-      for (unsigned int d = 0; d < dim; ++d)
-        crack << ',' << store.position[p][d];
-      for (unsigned int d = 0; d < dim; ++d)
-        crack << ',' << store.reference_position[p][d];
-      crack << ',' << store.damage[p] << '\n';
-    }
+  write_particle_points(
+      file, store, false, [&](const std::size_t p) { return store.failed[p] != 0; },
+      [&](const std::size_t p) { return store.damage[p]; });
+}
+
+template <int dim>
+void write_damage_field(const std::string &file, const ParticleStore<dim> &store)
+{
+  write_particle_points(
+      file, store, true, [](const std::size_t) { return true; },
+      [&](const std::size_t p) { return store.failed[p] ? 1.0 : store.damage[p]; });
 }
 
 template <int dim>
@@ -86,6 +113,8 @@ void write_polylines(const std::string &file,
 }
 
 template void write_failed_particles(const std::string &, const ParticleStore<2> &);
+template void write_damage_field(const std::string &, const ParticleStore<2> &);
+template void write_damage_field(const std::string &, const ParticleStore<3> &);
 template void write_failed_particles(const std::string &, const ParticleStore<3> &);
 template void write_polylines(const std::string &,
                               const std::vector<std::vector<Point<2>>> &);

@@ -1,3 +1,4 @@
+#include <lme_mpm/base/input.h>
 #include <lme_mpm/scenes/scene.h>
 
 namespace lme_mpm
@@ -12,6 +13,45 @@ public:
   explicit GenericScene(const SceneContext<dim> &) {}
 };
 } // namespace scenes
+
+unsigned int find_body(ParameterHandler &prm, const unsigned int n_bodies,
+                       const std::string &name, const std::string &owner)
+{
+  for (unsigned int b = 0; b < n_bodies; ++b)
+  {
+    prm.enter_subsection(input::subsection_name("Body", b));
+    const std::string n = input::trim(prm.get("Name"));
+    prm.leave_subsection();
+    if (n == name)
+      return b;
+  }
+  AssertThrow(false, ExcBadInput(owner, "no Body N/Name is '" + name + "'"));
+  return 0;
+}
+
+void set_body_entry(ParameterHandler &prm, const unsigned int n_bodies,
+                    const std::string &body, const std::string &entry,
+                    const std::string &value, const std::string &declared_default,
+                    const std::string &owner)
+{
+  const unsigned int b          = find_body(prm, n_bodies, body, owner);
+  const std::string section     = input::subsection_name("Body", b);
+  std::vector<std::string> path = input::split(entry, '/');
+  const std::string key         = path.back();
+  path.pop_back();
+  prm.enter_subsection(section);
+  for (const auto &s : path)
+    prm.enter_subsection(s);
+  const std::string given = input::trim(prm.get(key));
+  const bool free         = given == declared_default || given == value;
+  if (free)
+    prm.set(key, value);
+  for (std::size_t i = 0; i <= path.size(); ++i)
+    prm.leave_subsection();
+  AssertThrow(free, ExcBadInput(section + "/" + entry,
+                                "is set by " + owner + " for body '" + body + "' (to '" +
+                                    value + "'): leave it out of the file"));
+}
 
 template <int dim>
 void declare_scene_parameters(ParameterHandler &prm)

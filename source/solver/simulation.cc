@@ -45,7 +45,9 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
   {
     SceneContext<dim> context;
     context.thickness = parameters.thickness;
+    context.n_bodies  = counts.bodies;
     scene             = create_scene<dim>(prm, context);
+    scene->set_entries(prm);
     scene->adjust(parameters);
   }
   output_directory = parameters.directory;
@@ -132,6 +134,8 @@ void Simulation<dim>::setup_particles(ParameterHandler &prm,
   {
     particle_spacing = std::min(particle_spacing, h_min / body.particles_per_cell);
     fracture.check_neighbourhood(body.material, body.particles_per_cell, body.section);
+    for (const unsigned int m : body.zone_materials)
+      fracture.check_neighbourhood(m, body.particles_per_cell, body.section);
   }
   // The time step comes from the wave speed; the motion the input starts must not
   // carry a particle half a cell in one step either (the run guard would stop it at
@@ -226,7 +230,12 @@ SceneState<dim> Simulation<dim>::scene_state() const
   state.particles  = &store;
   state.body_names = &contact.body_names();
   state.run        = &parameters;
-  state.time       = t;
+  if (contact.active())
+  {
+    state.contact_forces      = &contact.mean_forces();
+    state.peak_contact_forces = &contact.peak_forces();
+  }
+  state.time = t;
   return state;
 }
 
@@ -490,6 +499,7 @@ void Simulation<dim>::write_output_row()
   constraints.write_row(row);
   contact.write_row(row, store);
   probes.write_row(row, store);
+  scene->write_history_row(row, scene_state());
   exact.write_row(row, store, t);
   history.write_row(row.str());
   results["final_total_energy"]   = e.total();
@@ -519,6 +529,7 @@ void Simulation<dim>::prepare_output()
     constraints.write_header(header);
     contact.write_header(header);
     probes.write_header(header);
+    scene->write_history_header(header);
     exact.write_header(header);
     history.create(output_directory, header.str());
   }
@@ -569,6 +580,14 @@ void Simulation<dim>::advance_to_end(TimerOutput &timer,
       // would never move it by addition).
       next_output_time =
           output_interval * (std::floor((t + 0.5 * dt) / output_interval) + 1);
+      const std::string reason = scene->finished(scene_state());
+      if (!reason.empty())
+      {
+        results["stopped_early"] = 1;
+        stop_reason              = reason;
+        pcout << "Stopped at t = " << t << ": " << reason << std::endl;
+        break;
+      }
     }
     const bool by_steps = parameters.checkpoint_every_steps > 0 &&
                           step_count % parameters.checkpoint_every_steps == 0;
@@ -612,6 +631,7 @@ RunSummary Simulation<dim>::summarise(const double wall)
   {
     results["dissipated_energy"] = energies()["dissipated_energy"];
     write_failed_particles(output_directory + "/failed_particles.csv", store);
+    write_damage_field(output_directory + "/damage.csv", store);
   }
   if (!cracks.empty())
   {
@@ -664,7 +684,7 @@ std::map<std::string, double> Simulation<dim>::run()
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   RunSummary summary = summarise(wall);
   summary.status     = status;
-  summary.message    = message;
+  summary.message    = message.empty() ? stop_reason : message;
   summary.write(output_directory + "/summary.json", shape_function->name(),
                 state_checksum(), dim);
   // Past this point the output is on disk; the caller reports the failure.

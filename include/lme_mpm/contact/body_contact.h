@@ -107,16 +107,24 @@ public:
   void on_initial_accelerations(double mass_tolerance);
 
   /// history.csv: force_<name>_x ... (with contact) and displacement_<name>_x ... per
-  /// named body.
+  /// named body. The force is the mean over the steps since the previous row (the
+  /// impulse over the elapsed time): the force of one step chatters as particles cross
+  /// cells, its mean over an output interval is the load.
   void write_header(std::ostream &out) const;
   void write_row(std::ostream &out, const ParticleStore<dim> &particles);
-  /// Peak contact force magnitude per named body, for summary.json.
+  /// Per body: the contact force averaged over the interval the last history row
+  /// closed, and the largest of these means' magnitudes so far.
+  const std::vector<Tensor<1, dim>> &mean_forces() const { return mean_force; }
+  const std::vector<double> &peak_forces() const { return peak_force; }
+  /// Peak contact force magnitude per named body (the largest of the row means),
+  /// for summary.json.
   void add_results(std::map<std::string, double> &results) const;
 
   template <class Archive>
   void serialize(Archive &ar)
   {
-    ar(peak_force, stuck_pairs);
+    ar(peak_force, stuck_pairs, impulse, impulse_time);
+    mean_force.assign(n_bodies, Tensor<1, dim>());
     AssertThrow(peak_force.size() == n_bodies,
                 ExcMessage("the checkpoint holds another number of bodies"));
   }
@@ -197,6 +205,11 @@ private:
 
   std::vector<Tensor<1, dim>> contact_force;
   std::vector<double> peak_force;
+  /// Impulse per body and component since the last history row, and the time it
+  /// covers.
+  std::vector<double> impulse;
+  double impulse_time = 0;
+  std::vector<Tensor<1, dim>> mean_force;
 };
 } // namespace lme_mpm
 

@@ -17,6 +17,8 @@ struct BodyPlacement
   std::string section;                 ///< "Body N", for messages
   unsigned int material           = 0; ///< 0-based material index
   unsigned int particles_per_cell = 2; ///< per cell direction
+  /// 0-based materials of the body's "Material zones"
+  std::vector<unsigned int> zone_materials;
 };
 
 /**

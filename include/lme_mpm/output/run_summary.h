@@ -29,6 +29,11 @@ struct RunSummary
 template <int dim>
 void write_failed_particles(const std::string &file, const ParticleStore<dim> &particles);
 
+/// The final damage field of every particle (damage.csv) for plotting scripts: id,
+/// body, current and reference position, damage (1 for failed particles).
+template <int dim>
+void write_damage_field(const std::string &file, const ParticleStore<dim> &particles);
+
 /// Polylines (cracks.csv): one row per point, 'crack,point,x0,x1'.
 template <int dim>
 void write_polylines(const std::string &file,

@@ -8,6 +8,7 @@
 #include <lme_mpm/solver/run_parameters.h>
 
 #include <map>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,8 @@ template <int dim>
 struct SceneContext
 {
   double thickness = 1;
+  /// Problem/Number of bodies.
+  unsigned int n_bodies = 1;
 };
 
 /// What a scene sees at the end of a run.
@@ -29,7 +32,11 @@ struct SceneState
   const std::vector<std::string> *body_names = nullptr;
   /// The run's parameters, as adjust() left them.
   const RunParameters<dim> *run = nullptr;
-  double time                   = 0;
+  /// Per body: the contact force it received, averaged since the previous history
+  /// row, and the largest of these means so far (empty without contact).
+  const std::vector<Tensor<1, dim>> *contact_forces = nullptr;
+  const std::vector<double> *peak_contact_forces    = nullptr;
+  double time                                       = 0;
 };
 
 /**
@@ -47,9 +54,24 @@ public:
   /// Sets run parameters that follow from the scene's entries (called before the run
   /// is set up); throws ExcBadInput naming the entry on a conflict.
   virtual void adjust(RunParameters<dim> &) const {}
+  /// Writes entries of other subsections that follow from the scene's own (a body's
+  /// shape from a strip width, a loading velocity) into @p prm, at its top level;
+  /// called right after the scene is built, before anything else reads the file.
+  /// Use set_body_entry(), which refuses to overwrite what the file gave.
+  virtual void set_entries(ParameterHandler &) const {}
   /// Checks the scene against the set-up run (named bodies exist, ...); throws
   /// ExcBadInput naming the entry.
   virtual void check(const SceneState<dim> &) const {}
+  /// The scene's own history.csv columns, each preceded by a comma.
+  virtual void write_history_header(std::ostream &) const {}
+  /// Their values in one history row, each preceded by a comma.
+  virtual void write_history_row(std::ostream &, const SceneState<dim> &) const {}
+  /**
+   * Asked after each history row: a non-empty answer ends the run there, completed,
+   * with the answer as the reason in summary.json (a load test stops once the
+   * specimen has failed, as a testing machine does). The default never stops early.
+   */
+  virtual std::string finished(const SceneState<dim> &) const { return {}; }
   /// Adds the scene's results to summary.json.
   virtual void add_results(const SceneState<dim> &, std::map<std::string, double> &) const
   {
@@ -58,6 +80,24 @@ public:
 
 template <int dim>
 using SceneRegistry = Registry<Scene<dim>, SceneContext<dim>>;
+
+/**
+ * The N of the "Body N" whose "Name" is @p name among the first @p n_bodies (read
+ * from @p prm, at its top level); throws ExcBadInput naming @p owner (the scene entry
+ * that refers to the body) if none is.
+ */
+unsigned int find_body(ParameterHandler &prm, unsigned int n_bodies,
+                       const std::string &name, const std::string &owner);
+
+/**
+ * Sets @p entry ('Shape', or 'Prescribed velocity/Function expression') of the body
+ * named @p body to @p value on behalf of scene entry @p owner. The file must leave
+ * the entry at @p declared_default (or give @p value itself): a scene never silently
+ * replaces what the user wrote, it throws ExcBadInput naming both entries instead.
+ */
+void set_body_entry(ParameterHandler &prm, unsigned int n_bodies, const std::string &body,
+                    const std::string &entry, const std::string &value,
+                    const std::string &declared_default, const std::string &owner);
 
 /// Declares "Scene/Type" and every registered scene's entries beside it.
 template <int dim>

@@ -160,6 +160,8 @@ private:
   bool resumed                       = false;
   std::uint64_t resumed_history_size = 0;
   std::map<std::string, double> results;
+  /// Why the scene ended the run before the end time (empty if it did not).
+  std::string stop_reason;
 };
 } // namespace lme_mpm
 

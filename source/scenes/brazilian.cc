@@ -1,0 +1,355 @@
+#include <lme_mpm/base/input.h>
+#include <lme_mpm/scenes/scene.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace lme_mpm
+{
+namespace scenes
+{
+namespace
+{
+/// Enough digits that a shape written from the scene's numbers meets the disc.
+std::string num(const double x)
+{
+  std::ostringstream s;
+  s.precision(15);
+  s << x;
+  return s.str();
+}
+} // namespace
+
+/**
+ * The Brazilian (splitting) test: a disc of diameter D pressed across its vertical
+ * diameter by two bearing strips of width b that move towards each other. The scene
+ * writes the bodies' shapes and the strips' prescribed velocities from its own
+ * entries, so that the strip width or the loading rate is one number in the file:
+ * the disc, and above and below it a strip whose inner face follows the disc's
+ * surface over the width b (a curved jaw: the load spreads over the arc of
+ * half-angle alpha, sin(alpha) = b/D, which the Hondros solution assumes).
+ *
+ * History: the crack opening across the loaded diameter (the change in distance
+ * between two gauge points on the horizontal diameter). Summary: peak_force (the
+ * largest contact force on the top strip, N, for the real thickness),
+ * splitting_strength 2 P / (pi D t), the Hondros centre stress per unit load, and
+ * where the damage lies (the share within D/10 of the loaded diameter).
+ */
+template <int dim>
+class Brazilian : public Scene<dim>
+{
+public:
+  static void declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Diameter", "0.15", Patterns::Double(),
+                      "Brazilian test: the disc's diameter D (m), > 0.");
+    prm.declare_entry("Centre", "0.1, 0.1", Patterns::Anything(),
+                      "Brazilian test: the disc's centre (x, y in m; the axis runs "
+                      "along z in 3D).");
+    prm.declare_entry("Length", "0.3", Patterns::Double(),
+                      "Brazilian test, 3D only: the cylinder's length along z (m), from "
+                      "z = 0; > 0. In 2D the thickness is Problem/Thickness.");
+    prm.declare_entry("Strip width", "0.010", Patterns::Double(),
+                      "Brazilian test: width b of the bearing strips (m), in (0, D).");
+    prm.declare_entry("Strip thickness", "0.005", Patterns::Double(),
+                      "Brazilian test: the strips' thickness at their middle (m), > 0.");
+    prm.declare_entry("Loading velocity", "0.05", Patterns::Double(),
+                      "Brazilian test: the speed (m/s) at which each strip moves towards "
+                      "the centre, > 0; keep the loading time far above D / c_P.");
+    prm.declare_entry("Loading ramp time", "1e-4", Patterns::Double(),
+                      "Brazilian test: the strips' speed rises smoothly from zero over "
+                      "this time (s), >= 0.");
+    prm.declare_entry("Opening gauge length", "0.075", Patterns::Double(),
+                      "Brazilian test: the history column 'opening' is the change in "
+                      "distance between the disc's material points at x = cx -+ half "
+                      "this length on the horizontal diameter (m), in (0, D).");
+    prm.declare_entry("Stop at load fraction", "0.3", Patterns::Double(),
+                      "Brazilian test: once the load (the top strip's force in a history "
+                      "row) has fallen below this fraction of its peak, the run ends, as "
+                      "a testing machine stops after the specimen fails; in [0, 1), 0: "
+                      "run to the end time.");
+    prm.declare_entry("Elastic zone depth", "0", Patterns::Double(),
+                      "Brazilian test: the disc's particles within this depth (m) of a "
+                      "strip's contact arc, over the strip's width plus this depth on "
+                      "each side, are made of Scene/Elastic zone material (no fracture "
+                      "there: the concrete under a rigid jaw would otherwise fail in "
+                      "local crushing at the jaw's edges); >= 0, 0: none.");
+    prm.declare_entry("Elastic zone material", "2", Patterns::Integer(1),
+                      "Brazilian test: the number N of the 'Material N' of the elastic "
+                      "zones.");
+    prm.declare_entry("Disc", "disc", Patterns::Anything(),
+                      "Brazilian test: the Body N/Name of the disc.");
+    prm.declare_entry("Top strip", "top", Patterns::Anything(),
+                      "Brazilian test: the Body N/Name of the upper strip (its force is "
+                      "the load).");
+    prm.declare_entry("Bottom strip", "bottom", Patterns::Anything(),
+                      "Brazilian test: the Body N/Name of the lower strip.");
+  }
+
+  Brazilian(ParameterHandler &prm, const SceneContext<dim> &context)
+      : n_bodies(context.n_bodies)
+  {
+    diameter        = prm.get_double("Diameter");
+    length          = dim == 3 ? prm.get_double("Length") : context.thickness;
+    strip_width     = prm.get_double("Strip width");
+    strip_thickness = prm.get_double("Strip thickness");
+    velocity        = prm.get_double("Loading velocity");
+    ramp            = prm.get_double("Loading ramp time");
+    gauge           = prm.get_double("Opening gauge length");
+    stop_fraction   = prm.get_double("Stop at load fraction");
+    zone_depth      = prm.get_double("Elastic zone depth");
+    zone_material   = prm.get_integer("Elastic zone material");
+    disc            = input::trim(prm.get("Disc"));
+    top             = input::trim(prm.get("Top strip"));
+    bottom          = input::trim(prm.get("Bottom strip"));
+    const auto c    = input::parse_doubles(prm.get("Centre"), "Scene/Centre");
+    AssertThrow(c.size() == 2, ExcBadInput("Scene/Centre", "needs two numbers: x, y"));
+    cx = c[0], cy = c[1];
+    const double big = 1e300;
+    input::require_range(diameter, 0, big, true, "Scene/Diameter");
+    input::require_range(strip_width, 0, diameter, true, "Scene/Strip width");
+    AssertThrow(strip_width < diameter,
+                ExcBadInput("Scene/Strip width", "must be below Scene/Diameter"));
+    input::require_range(strip_thickness, 0, big, true, "Scene/Strip thickness");
+    input::require_range(velocity, 0, big, true, "Scene/Loading velocity");
+    AssertThrow(velocity > 0, ExcBadInput("Scene/Loading velocity", "must be positive"));
+    input::require_range(ramp, 0, big, false, "Scene/Loading ramp time");
+    input::require_range(gauge, 0, diameter, true, "Scene/Opening gauge length");
+    AssertThrow(gauge > 0 && gauge < diameter,
+                ExcBadInput("Scene/Opening gauge length", "must lie in (0, D)"));
+    input::require_range(zone_depth, 0, 0.5 * diameter, false,
+                         "Scene/Elastic zone depth");
+    input::require_range(stop_fraction, 0, 1, false, "Scene/Stop at load fraction");
+    AssertThrow(stop_fraction < 1,
+                ExcBadInput("Scene/Stop at load fraction", "must lie in [0, 1)"));
+    if (dim == 3)
+      AssertThrow(length > 0, ExcBadInput("Scene/Length", "must be positive"));
+  }
+
+  void set_entries(ParameterHandler &prm) const override
+  {
+    const double R = 0.5 * diameter, b = strip_width;
+    const std::string rect_default =
+        dim == 2 ? "rectangle(0, 0, 1, 1)" : "rectangle(0, 0, 0, 1, 1, 1)";
+    const std::string disc_shape = cylinder(R);
+    // Height above the centre where the disc's surface meets x = cx -+ b/2.
+    const double rise = std::sqrt(R * R - 0.25 * b * b);
+    set_body_entry(prm, n_bodies, disc, "Shape", disc_shape, rect_default, "Scene/Disc");
+    if (zone_depth > 0)
+    {
+      prm.enter_subsection("Problem");
+      const auto n_materials = prm.get_integer("Number of materials");
+      prm.leave_subsection();
+      AssertThrow(zone_material <= n_materials,
+                  ExcBadInput("Scene/Elastic zone material",
+                              "must be between 1 and Problem/Number of materials = " +
+                                  std::to_string(n_materials)));
+      // Under each strip: the cap of the disc beyond the strip's edge height less the
+      // depth, over the strip's width plus the depth on each side.
+      const double half   = 0.5 * b + zone_depth;
+      const std::string m = std::to_string(zone_material) + ": ";
+      set_body_entry(prm, n_bodies, disc, "Material zones",
+                     m + box(cx - half, cy + rise - zone_depth, cx + half, cy + R) +
+                         "; " + m +
+                         box(cx - half, cy - R, cx + half, cy - rise + zone_depth),
+                     "", "Scene/Elastic zone depth");
+    }
+    // Each strip: a box from where the disc's surface meets x = cx -+ b/2 outwards,
+    // minus the disc, so that its inner face follows the disc over the width b.
+    for (const int side : {1, -1})
+    {
+      const std::string &name = side > 0 ? top : bottom;
+      const std::string owner = side > 0 ? "Scene/Top strip" : "Scene/Bottom strip";
+      const double inner      = cy + side * rise;
+      const double outer      = cy + side * (R + strip_thickness);
+      const std::string shape =
+          box(cx - 0.5 * b, std::min(inner, outer), cx + 0.5 * b, std::max(inner, outer));
+      set_body_entry(prm, n_bodies, name, "Shape", shape, rect_default, owner);
+      set_body_entry(prm, n_bodies, name, "Holes", disc_shape, "", owner);
+      // Towards the centre at the loading velocity after a cosine ramp.
+      const std::string speed = ramp > 0 ? "if(t < " + num(ramp) + ", " + num(velocity) +
+                                               " * 0.5 * (1 - cos(pi * t / " + num(ramp) +
+                                               ")), " + num(velocity) + ")"
+                                         : num(velocity);
+      std::string expression =
+          "0; " + std::string(side > 0 ? "-" : "") + "(" + speed + ")";
+      if (dim == 3)
+        expression += "; 0";
+      set_body_entry(prm, n_bodies, name, "Prescribed velocity/Function expression",
+                     expression, "", owner);
+    }
+  }
+
+  void check(const SceneState<dim> &state) const override
+  {
+    const unsigned int d = body_index(state, disc, "Scene/Disc");
+    (void)body_index(state, top, "Scene/Top strip");
+    (void)body_index(state, bottom, "Scene/Bottom strip");
+    AssertThrow(state.run->body_force.norm() == 0,
+                ExcBadInput("Problem/Body force",
+                            "the Brazilian test has no gravity (its "
+                            "weight is negligible against the load)"));
+    // Both gauge points must hold particles, or the opening would read zero.
+    for (const int side : {-1, 1})
+      AssertThrow(gauge_weight(*state.particles, d, side) > 0,
+                  ExcBadInput("Scene/Opening gauge length",
+                              "no particle of the disc lies within " +
+                                  num(gauge_radius()) + " m of a gauge point"));
+  }
+
+  void write_history_header(std::ostream &out) const override
+  {
+    out << ",opening,damage_centre,damage_total";
+  }
+
+  void write_history_row(std::ostream &out, const SceneState<dim> &state) const override
+  {
+    const unsigned int d = body_index(state, disc, "Scene/Disc");
+    out << ","
+        << gauge_displacement(*state.particles, d, 1) -
+               gauge_displacement(*state.particles, d, -1);
+    // Where the crack starts: the damage-weighted volume of the disc within R/2 of
+    // the centre, and in all of it.
+    const ParticleStore<dim> &p = *state.particles;
+    const double r2             = 0.0625 * diameter * diameter;
+    double centre = 0, total = 0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p.body_id[i] == d && p.damage[i] > 0)
+      {
+        const double w  = p.damage[i] * p.mass[i] / p.density[i];
+        const double dx = p.reference_position[i][0] - cx,
+                     dy = p.reference_position[i][1] - cy;
+        total += w;
+        if (dx * dx + dy * dy <= r2)
+          centre += w;
+      }
+    out << "," << centre << "," << total;
+  }
+
+  std::string finished(const SceneState<dim> &state) const override
+  {
+    if (stop_fraction <= 0 || state.contact_forces == nullptr)
+      return {};
+    const unsigned int s = body_index(state, top, "Scene/Top strip");
+    const double peak    = (*state.peak_contact_forces)[s];
+    if (peak > 0 && (*state.contact_forces)[s].norm() < stop_fraction * peak)
+      return "the load fell below " + num(stop_fraction) + " of its peak";
+    return {};
+  }
+
+  void add_results(const SceneState<dim> &state,
+                   std::map<std::string, double> &results) const override
+  {
+    const auto force = results.find("peak_contact_force_" + top);
+    if (force != results.end())
+    {
+      results["peak_force"]         = force->second;
+      results["splitting_strength"] = 2 * force->second / (M_PI * diameter * length);
+    }
+    // Hondros: centre sigma_xx = (2 P / (pi D t)) (2 cos(alpha) - alpha / sin(alpha)).
+    const double alpha               = std::asin(strip_width / diameter);
+    results["hondros_centre_factor"] = 2 * std::cos(alpha) - alpha / std::sin(alpha);
+
+    // Where the damage is: its volume-weighted share within D/10 of the loaded
+    // diameter, and the vertical extent of the fully softened band there.
+    const ParticleStore<dim> &p = *state.particles;
+    const unsigned int d        = body_index(state, disc, "Scene/Disc");
+    double all = 0, near = 0, lo = 1e300, hi = -1e300;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p.body_id[i] == d && p.damage[i] > 0)
+      {
+        const double w = p.damage[i] * p.mass[i] / p.density[i];
+        all += w;
+        if (std::abs(p.reference_position[i][0] - cx) <= 0.1 * diameter)
+        {
+          near += w;
+          if (p.damage[i] >= 0.99)
+            lo = std::min(lo, p.reference_position[i][1]),
+            hi = std::max(hi, p.reference_position[i][1]);
+        }
+      }
+    results["damage_share_near_loaded_diameter"]  = all > 0 ? near / all : 0;
+    results["softened_band_height_over_diameter"] = hi > lo ? (hi - lo) / diameter : 0;
+  }
+
+private:
+  std::string cylinder(const double R) const
+  {
+    std::string s = "cylinder(" + num(cx) + ", " + num(cy) + ", " + num(R);
+    if (dim == 3)
+      s += ", 0, " + num(length);
+    return s + ")";
+  }
+
+  std::string box(const double x0, const double y0, const double x1,
+                  const double y1) const
+  {
+    if (dim == 2)
+      return "rectangle(" + num(x0) + ", " + num(y0) + ", " + num(x1) + ", " + num(y1) +
+             ")";
+    return "rectangle(" + num(x0) + ", " + num(y0) + ", 0, " + num(x1) + ", " + num(y1) +
+           ", " + num(length) + ")";
+  }
+
+  static unsigned int body_index(const SceneState<dim> &state, const std::string &name,
+                                 const std::string &entry)
+  {
+    const auto &names = *state.body_names;
+    for (unsigned int b = 0; b < names.size(); ++b)
+      if (names[b] == name)
+        return b;
+    AssertThrow(false, ExcBadInput(entry, "no Body N/Name is '" + name + "'"));
+    return 0;
+  }
+
+  /// Gauge points are material points: particles within this distance (in the x-y
+  /// plane) of (cx -+ gauge / 2, cy) in the reference configuration.
+  double gauge_radius() const { return 0.02 * diameter; }
+
+  bool near_gauge(const Point<dim> &x0, const int side) const
+  {
+    const double dx = x0[0] - (cx + 0.5 * side * gauge), dy = x0[1] - cy;
+    return dx * dx + dy * dy <= gauge_radius() * gauge_radius();
+  }
+
+  double gauge_weight(const ParticleStore<dim> &p, const unsigned int body,
+                      const int side) const
+  {
+    double m = 0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p.body_id[i] == body && near_gauge(p.reference_position[i], side))
+        m += p.mass[i];
+    return m;
+  }
+
+  /// The mass-weighted mean x displacement of the gauge point on @p side.
+  double gauge_displacement(const ParticleStore<dim> &p, const unsigned int body,
+                            const int side) const
+  {
+    double m = 0, u = 0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p.body_id[i] == body && near_gauge(p.reference_position[i], side))
+      {
+        m += p.mass[i];
+        u += p.mass[i] * (p.position[i][0] - p.reference_position[i][0]);
+      }
+    return m > 0 ? u / m : 0;
+  }
+
+  unsigned int n_bodies;
+  double diameter = 0.15, length = 1, strip_width = 0.01, strip_thickness = 0.005;
+  double velocity = 0.05, ramp = 1e-4, gauge = 0.075, cx = 0.1, cy = 0.1;
+  double stop_fraction = 0.3, zone_depth = 0;
+  unsigned int zone_material = 2;
+  std::string disc, top, bottom;
+};
+} // namespace scenes
+} // namespace lme_mpm
+
+using lme_mpm::scenes::Brazilian;
+LME_MPM_REGISTER_SCENE(
+    Brazilian, "brazilian",
+    "the Brazilian splitting test: a disc (Scene/Diameter) between "
+    "two bearing strips (Scene/Strip width) that close at "
+    "Scene/Loading velocity; writes the bodies' shapes and the strips' "
+    "velocities, reports peak_force and splitting_strength.")
