@@ -538,6 +538,8 @@ double BodyContact<dim>::on_accelerations(const ExplicitNewmark &newmark, const 
   // This step's accelerations decide anew which pairs stick (pairs are in ascending
   // key order, so the list stays sorted).
   stuck_pairs.clear();
+  // Every step counts towards the history row's mean force, with contact or not.
+  impulse_time += dt;
   if (pairs.empty())
     return 0;
   NodalFields<dim> &nodes = transfer.nodes();
@@ -569,7 +571,6 @@ double BodyContact<dim>::on_accelerations(const ExplicitNewmark &newmark, const 
   for (unsigned int b = 0; b < n_bodies; ++b)
     for (unsigned int d = 0; d < dim; ++d)
       impulse[b * dim + d] += dt * contact_force[b][d];
-  impulse_time += dt;
   return work;
 }
 
