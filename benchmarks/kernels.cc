@@ -1,6 +1,9 @@
 // Kernel timings (Google Benchmark): shape-function evaluation, cell sort, stress
 // update, neighbourhood build, and a whole time step. Items are particles, so the
 // reported rate is particles per second (one thread unless the benchmark says so).
+// The machine/ benchmarks measure what one core can do at best: memory bandwidth (a
+// triad over arrays far larger than the caches), scalar flops and glibc's
+// exp, the limits doc/performance.md compares the LME kernel with.
 //
 //   cmake -S . -B build -DLME_MPM_BUILD_BENCHMARKS=ON && cmake --build build --target
 //   kernels
@@ -14,6 +17,7 @@
 #include <lme_mpm/shape_functions/shape_function.h>
 #include <lme_mpm/solver/simulation.h>
 
+#include <cmath>
 #include <random>
 #include <sstream>
 
@@ -130,8 +134,63 @@ void time_step(benchmark::State &state, const std::string &type)
   state.SetItemsProcessed(state.iterations() * sim.particles().size());
   MultithreadInfo::set_thread_limit();
 }
+/// a = b + s c over three arrays of 2^23 doubles (192 MiB): bytes read and written.
+void machine_triad(benchmark::State &state)
+{
+  const std::size_t n = std::size_t(1) << 23;
+  std::vector<double> a(n, 0.0), b(n, 1.0), c(n, 2.0);
+  for (auto _ : state)
+  {
+    const double s = 0.5;
+    for (std::size_t i = 0; i < n; ++i)
+      a[i] = b[i] + s * c[i];
+    benchmark::DoNotOptimize(a.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetBytesProcessed(state.iterations() * 3 * n * sizeof(double));
+}
+
+/// Sixteen independent chains of a multiply and an add (the default x86-64 target has no
+/// FMA instruction; the compiler may pack pairs into SSE2): items are flops, two per
+/// link. The ceiling for arithmetic compiled with the project's flags.
+void machine_flops(benchmark::State &state)
+{
+  double x[16];
+  for (unsigned int k = 0; k < 16; ++k)
+    x[k] = 1 + 0.1 * k;
+  const double a = 0.999999, b = 1e-7;
+  const long n = 1 << 19;
+  for (auto _ : state)
+  {
+    for (long i = 0; i < n; ++i)
+      for (double &xi : x)
+        xi = xi * a + b;
+    benchmark::DoNotOptimize(x);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * n * 16 * 2);
+}
+
+/// glibc exp over independent arguments (the LME kernel's calls): items are calls.
+void machine_exp(benchmark::State &state)
+{
+  std::vector<double> x(4096);
+  for (std::size_t i = 0; i < x.size(); ++i)
+    x[i] = -10.0 * i / x.size();
+  for (auto _ : state)
+  {
+    double sum = 0;
+    for (const double xi : x)
+      sum += std::exp(xi);
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(state.iterations() * x.size());
+}
 } // namespace
 
+BENCHMARK(machine_triad)->Unit(benchmark::kMillisecond);
+BENCHMARK(machine_flops)->Unit(benchmark::kMillisecond);
+BENCHMARK(machine_exp)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(shape_functions, linear, "linear", true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(shape_functions, ugimp, "ugimp", true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(shape_functions, bspline, "bspline", true)

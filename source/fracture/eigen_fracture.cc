@@ -80,6 +80,12 @@ public:
 
   std::string name() const override { return "eigensoftening"; }
   double epsilon(const double h) const override { return C_eps * h; }
+  /// The mass-weighted mean exceeds f_t only if some neighbour's stress does (failed
+  /// neighbours count with zero). The margin covers the rounding of the sums.
+  FractureTrigger trigger(double) const override
+  {
+    return {FractureTrigger::Field::max_principal_stress, f_t * (1 - 1e-9)};
+  }
 
   void update(ParticleStore<dim> &P, const Neighbourhood<dim> &nb,
               const FractureFields &F, const std::size_t begin, const std::size_t end,
@@ -99,6 +105,8 @@ public:
       const double sig_I = F.max_principal_stress[p];
       if (P.onset_strain[p] == 0)
       {
+        if (!nb.has_row(p))
+          continue;
         double ms = 0, m = 0;
         for (auto q = nb.begin(p); q != nb.end(p); ++q)
           if (P.position[*q].distance_square(P.position[p]) <= eps2)
@@ -227,6 +235,13 @@ public:
 
   std::string name() const override { return "eigenerosion"; }
   double epsilon(const double h) const override { return C_eps * h; }
+  /// The volume-weighted mean density exceeds G_c / (factor eps) only if some
+  /// neighbour's does; the largest eps gives the lowest bound.
+  FractureTrigger trigger(const double h_largest) const override
+  {
+    return {FractureTrigger::Field::energy_density,
+            G_c / (factor * C_eps * h_largest) * (1 - 1e-9)};
+  }
 
   void update(ParticleStore<dim> &P, const Neighbourhood<dim> &nb,
               const FractureFields &F, const std::size_t begin, const std::size_t end,
@@ -234,7 +249,7 @@ public:
   {
     for (std::size_t p = begin; p < end; ++p)
     {
-      if (P.material_id[p] != material_id || P.failed[p])
+      if (P.material_id[p] != material_id || P.failed[p] || !nb.has_row(p))
         continue;
       const double eps            = C_eps * F.spacing_of(p, grid_spacing);
       const double eps2           = eps * eps;

@@ -102,9 +102,11 @@ void FractureCoupling<dim>::check_neighbourhood(const unsigned int material,
 }
 
 template <int dim>
-void FractureCoupling<dim>::update(ParticleStore<dim> &store, const CrackSet<dim> *cracks)
+void FractureCoupling<dim>::prepare(const ParticleStore<dim> &store)
 {
   const std::size_t n = store.size();
+  if (prepared && prepared_size == n)
+    return;
   // On a graded grid each particle's lengths follow the cell it started in; the
   // neighbourhood is searched to the widest radius, and each model keeps the
   // neighbours within its particle's own.
@@ -130,39 +132,82 @@ void FractureCoupling<dim>::update(ParticleStore<dim> &store, const CrackSet<dim
     for (const double h : fields.spacing)
       h_largest = std::max(h_largest, h);
   }
-  double radius = 0;
+  radius      = 0;
+  seeded_rows = true;
+  thresholds.fill(std::numeric_limits<double>::infinity());
   for (const auto &f : models)
     if (f)
-      radius = std::max(radius, f->epsilon(h_largest));
+    {
+      radius                  = std::max(radius, f->epsilon(h_largest));
+      const FractureTrigger t = f->trigger(h_largest);
+      if (t.field == FractureTrigger::Field::none)
+        seeded_rows = false;
+      else
+      {
+        double &bound = thresholds[static_cast<unsigned int>(t.field)];
+        bound         = std::min(bound, t.threshold);
+      }
+    }
+  fields.max_principal_stress.resize(n);
+  fields.energy_density.resize(n);
+  seeds.resize(n);
+  prepared_size = n;
+  prepared      = true;
+}
+
+template <int dim>
+void FractureCoupling<dim>::take_snapshot(const ParticleStore<dim> &store,
+                                          const std::size_t begin, const std::size_t end)
+{
+  using Field = FractureTrigger::Field;
+  const double stress_bound =
+                   thresholds[static_cast<unsigned int>(Field::max_principal_stress)],
+               energy_bound =
+                   thresholds[static_cast<unsigned int>(Field::energy_density)];
+  for (std::size_t p = begin; p < end; ++p)
+  {
+    const bool alive = !store.failed[p];
+    const double s   = alive ? eigenvalues(store.stress[p])[0] : 0.0;
+    const double w =
+        alive ? 0.5 * (1 - store.damage[p]) * (store.stress[p] * store.strain[p]) : 0.0;
+    fields.max_principal_stress[p] = s;
+    fields.energy_density[p]       = w;
+    // Only alive particles of a material with a model read their row.
+    const bool reads = alive && models[store.material_id[p]] != nullptr;
+    seeds[p] = (s > stress_bound || w > energy_bound ? Neighbourhood<dim>::seed : 0) |
+               (reads ? Neighbourhood<dim>::takes_row : 0);
+  }
+}
+
+template <int dim>
+void FractureCoupling<dim>::update(ParticleStore<dim> &store, const CrackSet<dim> *cracks,
+                                   const bool snapshot_taken)
+{
+  const std::size_t n = store.size();
+  if (!snapshot_taken)
+  {
+    prepare(store);
+    parallel::for_range(n, [&](const std::size_t b, const std::size_t e)
+                        { take_snapshot(store, b, e); });
+  }
+  Assert(prepared && prepared_size == n, ExcInternalError());
   // Neighbours from the particle's own body only: a tool pressed against a specimen
-  // must not enter its onset or energy averages.
-  // ... nor from the other face of an explicit crack.
+  // must not enter its onset or energy averages; nor from the other face of an
+  // explicit crack. Rows only where a model can act (none before fracture starts).
+  const std::vector<std::uint8_t> *row_seeds = seeded_rows ? &seeds : nullptr;
   if (cracks && !cracks->empty())
   {
     crack_bins.build(cracks->polylines(), radius);
-    neighbours.build(store.position, radius, &store.body_id,
-                     [&](const std::size_t p, const std::size_t q) {
-                       return crack_bins.separates(store.position[p], store.position[q]);
-                     });
+    neighbours.build(
+        store.position, radius, &store.body_id,
+        [&](const std::size_t p, const std::size_t q)
+        { return crack_bins.separates(store.position[p], store.position[q]); },
+        row_seeds);
   }
   else
-    neighbours.build(store.position, radius, &store.body_id);
-  // Snapshot of what neighbours read, so that no update sees another's new state.
-  fields.max_principal_stress.resize(n);
-  fields.energy_density.resize(n);
-  parallel::for_range(
-      n,
-      [&](const std::size_t b, const std::size_t e)
-      {
-        for (std::size_t p = b; p < e; ++p)
-        {
-          const bool alive               = !store.failed[p];
-          fields.max_principal_stress[p] = alive ? eigenvalues(store.stress[p])[0] : 0.0;
-          fields.energy_density[p] =
-              alive ? 0.5 * (1 - store.damage[p]) * (store.stress[p] * store.strain[p])
-                    : 0.0;
-        }
-      });
+    neighbours.build(store.position, radius, &store.body_id, {}, row_seeds);
+  rows_built += neighbours.n_rows();
+  updates += 1;
   parallel::for_range(n,
                       [&](const std::size_t b, const std::size_t e)
                       {
@@ -186,6 +231,10 @@ void FractureCoupling<dim>::add_statistics(const ParticleStore<dim> &store,
   for (const auto f : store.failed)
     failed += f;
   results["failed_particles"] = failed;
+  // How much of the neighbourhood work the triggers left: 1 = every particle, every
+  // step.
+  if (updates > 0 && store.size() > 0)
+    results["fracture_neighbourhood_share"] = rows_built / (updates * store.size());
 }
 
 template class FractureCoupling<2>;

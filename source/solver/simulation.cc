@@ -41,6 +41,17 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
     : console_stream(console), pcout(console, false), transfer(background, store),
       crack_contact(cracks, transfer, store), contact(background, transfer, store)
 {
+  stage.crack_growth        = stages.add("crack growth");
+  stage.locate              = stages.add("locate and sort particles");
+  stage.to_grid             = stages.add("shape functions, particles to grid");
+  stage.rates               = stages.add("rates (predictor)");
+  stage.stresses_and_forces = stages.add("strains, stresses, forces");
+  stage.stresses            = stages.add("strains and stresses");
+  stage.fracture            = stages.add("fracture");
+  stage.forces              = stages.add("forces");
+  stage.accelerations       = stages.add("accelerations (corrector)");
+  stage.to_particles        = stages.add("grid to particles");
+  stage.contact             = stages.add("contact (bodies, crack faces)");
   parameters.parse_parameters(prm);
   {
     SceneContext<dim> context;
@@ -177,8 +188,12 @@ void Simulation<dim>::step()
     initialise_accelerations();
   // A crack that grew with last step's failures separates the field along its new
   // part from this step on.
-  if (fracture.active() && cracks.grow(store, particle_spacing))
-    cracks.assign_fields(background, crack_reach, transfer.nodes().layout);
+  if (fracture.active() && !cracks.empty())
+  {
+    StageTimer::Scope scope(stages, stage.crack_growth);
+    if (cracks.grow(store, particle_spacing))
+      cracks.assign_fields(background, crack_reach, transfer.nodes().layout);
+  }
   locate_and_sort();
   particles_to_grid();
   predict_displacement_rates(t_half);
@@ -249,17 +264,22 @@ void Simulation<dim>::abort_run(const std::size_t p, const std::string &why) con
 template <int dim>
 void Simulation<dim>::locate_and_sort()
 {
+  StageTimer::Scope scope(stages, stage.locate);
   const std::size_t lost = transfer.locate_and_sort();
   if (lost < store.size())
     abort_run(lost, "the particle left the background grid (enlarge the grid, or "
                     "the run is unstable: lower the CFL number)");
   // Bodies get their own fields where their supports may meet.
-  contact.assign_fields(store, transfer.nodes().layout);
+  {
+    StageTimer::Scope contact_scope(stages, stage.contact);
+    contact.assign_fields(store, transfer.nodes().layout);
+  }
 }
 
 template <int dim>
 void Simulation<dim>::particles_to_grid()
 {
+  StageTimer::Scope scope(stages, stage.to_grid);
   // Explicit cracks send the particle-node pairs that cross them to second fields.
   std::uint8_t *touched = cracks.empty() ? nullptr : crack_contact.touched(store.size());
   transfer.particles_to_grid(*shape_function, constraints.all_nodes(),
@@ -274,6 +294,7 @@ void Simulation<dim>::particles_to_grid()
 template <int dim>
 void Simulation<dim>::predict_displacement_rates(const double t_half)
 {
+  StageTimer::Scope scope(stages, stage.rates);
   NodalFields<dim> &nodes = transfer.nodes();
   transfer.predict_rates(newmark, dt, mass_tolerance);
   const auto constrain = [&](std::vector<Tensor<1, dim>> &x)
@@ -282,7 +303,10 @@ void Simulation<dim>::predict_displacement_rates(const double t_half)
     constraints.impose_rates(x, nodes.layout, t_half);
   };
   contact.impose_prescribed_rates(nodes.rate, t_half);
-  crack_contact.on_rates(mass_tolerance);
+  {
+    StageTimer::Scope contact_scope(stages, stage.contact);
+    crack_contact.on_rates(mass_tolerance);
+  }
   constraints.impose_rates(nodes.rate, nodes.layout, t_half);
   if (parameters.mass_corrections > 0)
   {
@@ -293,7 +317,10 @@ void Simulation<dim>::predict_displacement_rates(const double t_half)
         nodes.rate, nodes.rhs, parameters.mass_corrections, mass_tolerance, constrain);
   }
   // Contact between bodies last: constraints still win on their nodes.
-  contact.on_rates(mass_tolerance);
+  {
+    StageTimer::Scope contact_scope(stages, stage.contact);
+    contact.on_rates(mass_tolerance);
+  }
   if (contact.n_contact_pairs() > 0)
     constraints.impose_rates(nodes.rate, nodes.layout, t_half);
 }
@@ -308,18 +335,32 @@ void Simulation<dim>::update_stresses_and_forces()
   if (fracture.active())
   {
     // The fracture update couples particles through their neighbourhoods: all
-    // stresses first.
-    parallel::for_range(store.size(), [&](const std::size_t b, const std::size_t e)
-                        { transfer.strain_increments(b, e, dt); });
-    parallel::for_range(store.size(), stresses);
-    fracture.update(store, &cracks);
+    // stresses (and the snapshot the models read) first, in one pass.
+    {
+      StageTimer::Scope scope(stages, stage.stresses);
+      fracture.prepare(store);
+      parallel::for_range(store.size(),
+                          [&](const std::size_t b, const std::size_t e)
+                          {
+                            transfer.strain_increments(b, e, dt);
+                            stresses(b, e);
+                            fracture.take_snapshot(store, b, e);
+                          });
+    }
+    {
+      StageTimer::Scope scope(stages, stage.fracture);
+      fracture.update(store, &cracks, true);
+    }
+    StageTimer::Scope scope(stages, stage.forces);
     transfer.scatter_chunks([&](const std::size_t b, const std::size_t e)
                             { transfer.forces(b, e, body_force); });
   }
   else
+  {
     // Without it each particle's strain, stress and force follow one another,
     // chunk by chunk while its connectivity is in cache: the same arithmetic in
     // the same order, one pass over the connectivity fewer.
+    StageTimer::Scope scope(stages, stage.stresses_and_forces);
     transfer.scatter_chunks(
         [&](const std::size_t b, const std::size_t e)
         {
@@ -327,15 +368,20 @@ void Simulation<dim>::update_stresses_and_forces()
           stresses(b, e);
           transfer.forces(b, e, body_force);
         });
+  }
 }
 
 template <int dim>
 const std::vector<Tensor<1, dim>> *Simulation<dim>::correct_accelerations()
 {
+  StageTimer::Scope scope(stages, stage.accelerations);
   NodalFields<dim> &nodes = transfer.nodes();
   transfer.accelerations(mass_tolerance);
   contact.impose_prescribed_accelerations(nodes.acceleration, t + dt, derivative_step());
-  crack_contact.on_accelerations(newmark, dt);
+  {
+    StageTimer::Scope contact_scope(stages, stage.contact);
+    crack_contact.on_accelerations(newmark, dt);
+  }
   const auto impose = [&](std::vector<Tensor<1, dim>> &x)
   { constraints.impose_accelerations(x, nodes.layout, t + dt, derivative_step()); };
   const auto constrain = [&](std::vector<Tensor<1, dim>> &x)
@@ -348,7 +394,10 @@ const std::vector<Tensor<1, dim>> *Simulation<dim>::correct_accelerations()
     transfer.correct_towards_consistent_mass(nodes.acceleration, nodes.force,
                                              parameters.mass_corrections, mass_tolerance,
                                              constrain);
-  contact_work = contact.on_accelerations(newmark, dt);
+  {
+    StageTimer::Scope contact_scope(stages, stage.contact);
+    contact_work = contact.on_accelerations(newmark, dt);
+  }
   if (contact.n_contact_pairs() > 0)
     impose(nodes.acceleration);
   if (parameters.mass_corrections == 0 || constraints.empty())
@@ -362,6 +411,7 @@ template <int dim>
 std::size_t Simulation<dim>::update_particles(
     const std::vector<Tensor<1, dim>> *mass_times_acceleration)
 {
+  StageTimer::Scope scope(stages, stage.to_particles);
   const NodalFields<dim> &nodes = transfer.nodes();
   const double work =
       constraints.update_reactions(nodes.layout, nodes.mass, nodes.acceleration,
@@ -620,6 +670,7 @@ RunSummary Simulation<dim>::summarise(const double wall)
   results["time_step"]                 = dt;
   results["particle_steps_per_second"] = store.size() * double(step_count) / wall;
   results["max_energy_drift"]          = energy.max_drift();
+  stages.add_results(results);
   peak_force.add_results(results);
   contact.add_results(results);
   scene->add_results(scene_state(), results);
@@ -646,7 +697,7 @@ RunSummary Simulation<dim>::summarise(const double wall)
 template <int dim>
 std::map<std::string, double> Simulation<dim>::run()
 {
-  TimerOutput timer(pcout, TimerOutput::summary, TimerOutput::wall_times);
+  TimerOutput timer(pcout, TimerOutput::never, TimerOutput::wall_times);
   const auto start = std::chrono::steady_clock::now();
   prepare_output();
 
@@ -689,6 +740,9 @@ std::map<std::string, double> Simulation<dim>::run()
                 state_checksum(), dim);
   // Past this point the output is on disk; the caller reports the failure.
   AssertThrow(status == "completed", ExcMessage(message));
+  timer.print_summary();
+  if (pcout.is_active())
+    stages.print(pcout.get_stream(), wall);
   pcout << "Finished: " << step_count << " steps in " << wall << " s ("
         << results["particle_steps_per_second"] << " particle-steps/s); max energy drift "
         << energy.max_drift() << std::endl;

@@ -10,6 +10,8 @@
 #include <lme_mpm/materials/material_set.h>
 #include <lme_mpm/particles/particle_store.h>
 
+#include <array>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -19,9 +21,10 @@ namespace lme_mpm
 {
 /**
  * Couples the fracture models to the particles: one model (or none) per material,
- * read from "Material N/Fracture"; each step it rebuilds the epsilon-neighbourhood,
- * takes the snapshot of the fields neighbours read, and runs every model on its
- * material's particles. Runs after all stresses of the step are known.
+ * read from "Material N/Fracture"; each step it takes the snapshot of the fields
+ * neighbours read, builds the epsilon-neighbourhood where a model can act (around
+ * the particles above a model's trigger, FractureTrigger), and runs every model on
+ * its material's particles. Runs after all stresses of the step are known.
  */
 template <int dim>
 class FractureCoupling
@@ -52,9 +55,27 @@ public:
   void check_neighbourhood(unsigned int material, unsigned int particles_per_cell,
                            const std::string &body_section) const;
 
-  /// The fracture update of one step, after the stresses. With @p cracks, particles
-  /// on different faces of an explicit crack are not neighbours.
-  void update(ParticleStore<dim> &particles, const CrackSet<dim> *cracks = nullptr);
+  /**
+   * Sizes the snapshot for @p particles; call before take_snapshot() in each step
+   * (cheap after the first call).
+   */
+  void prepare(const ParticleStore<dim> &particles);
+  /**
+   * The snapshot of particles [@p begin, @p end), from their stresses and strains of
+   * the step: called by the stress pass chunk by chunk, while the particles are in
+   * cache. Thread-safe for disjoint ranges.
+   */
+  void take_snapshot(const ParticleStore<dim> &particles, std::size_t begin,
+                     std::size_t end);
+
+  /**
+   * The fracture update of one step, after the stresses. With @p cracks, particles
+   * on different faces of an explicit crack are not neighbours. @p snapshot_taken:
+   * prepare() and take_snapshot() covered every particle since the stresses changed;
+   * otherwise the update takes the snapshot itself.
+   */
+  void update(ParticleStore<dim> &particles, const CrackSet<dim> *cracks = nullptr,
+              bool snapshot_taken = false);
 
   /// Counters of every model, and the failed particles and dissipated energy.
   void add_statistics(const ParticleStore<dim> &particles,
@@ -68,6 +89,19 @@ private:
   Neighbourhood<dim> neighbours;
   CrackSegmentBins<dim> crack_bins;
   FractureFields fields;
+
+  // Set by prepare() for the particles' count (spacings are of the reference
+  // positions, so they hold for the whole run).
+  std::size_t prepared_size = 0;
+  bool prepared             = false;
+  double radius             = 0; ///< of the neighbourhood search
+  /// Without a model that gives no trigger: rows only around the seeds.
+  bool seeded_rows = false;
+  /// Threshold per field (FractureTrigger::Field), the lowest of the models'.
+  std::array<double, 3> thresholds{};
+  std::vector<std::uint8_t> seeds; ///< particles above a threshold
+  // Rows built, and steps, for summary.json.
+  double rows_built = 0, updates = 0;
 };
 } // namespace lme_mpm
 

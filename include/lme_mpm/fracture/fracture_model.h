@@ -30,6 +30,25 @@ struct FractureFields
   }
 };
 
+/**
+ * Where a fracture model can act on a particle that has not started to fracture: only
+ * if a particle of its epsilon-neighbourhood has a snapshot field above a threshold
+ * (an average over the neighbourhood exceeds a bound only if some member does). The
+ * coupling then builds neighbourhood rows only around such particles, which before
+ * fracture starts is none at all.
+ */
+struct FractureTrigger
+{
+  enum class Field
+  {
+    none, ///< no bound: every particle gets its row every step
+    max_principal_stress,
+    energy_density
+  };
+  Field field      = Field::none;
+  double threshold = 0; ///< in the field's units
+};
+
 /// What a fracture model is built with.
 struct FractureContext
 {
@@ -58,6 +77,14 @@ public:
   virtual void update(ParticleStore<dim> &particles, const Neighbourhood<dim> &neighbours,
                       const FractureFields &fields, std::size_t begin, std::size_t end,
                       unsigned int material_id) const = 0;
+  /**
+   * The model's trigger for neighbourhoods searched to the radius epsilon(@p
+   * h_largest). A model that gives one reads the row of a particle only where
+   * Neighbourhood::has_row() is true: a particle without a row has failed, or has no
+   * neighbour whose field exceeds the threshold. The default, no trigger, gives every
+   * particle a row.
+   */
+  virtual FractureTrigger trigger(double /*h_largest*/) const { return {}; }
   /// Counters for summary.json.
   virtual std::vector<std::pair<std::string, double>> statistics() const { return {}; }
 };

@@ -20,34 +20,60 @@ using namespace dealii;
  * in linear time by binning the particles into cubes as wide as the radius (a
  * cell-linked list), so each particle looks only at the 3^dim cubes around it. Rows
  * are sorted, so the result does not depend on the thread count.
+ *
+ * Rows can be limited to the particles within the radius of a few seed particles
+ * (those where a fracture criterion can trigger) and, among them, to those that take a
+ * row (those a model reads): the others get empty rows, and when there is no seed the
+ * build costs one scan of the flags.
  */
 template <int dim>
 class Neighbourhood
 {
 public:
+  /// Bits of the @p seeds argument of build().
+  enum Flags : std::uint8_t
+  {
+    seed      = 1, ///< the particles within the radius of this one get their rows
+    takes_row = 2  ///< this particle gets its row if a seed is within the radius
+  };
+
   /**
    * Rebuilds the lists for @p positions with search radius @p radius; with @p body
    * (one id per particle), pairs of different bodies are left out while building, and
    * so are pairs (p, q) for which @p separated returns true (for example the two faces
-   * of an explicit crack).
+   * of an explicit crack). With @p seeds (Flags per particle), only the particles
+   * flagged takes_row within @p radius of one flagged seed (of any body, on either side
+   * of a crack) get their row; the others get an empty one.
    */
   void build(const std::vector<Point<dim>> &positions, double radius,
              const std::vector<std::uint16_t> *body                         = nullptr,
-             const std::function<bool(std::size_t, std::size_t)> &separated = {});
+             const std::function<bool(std::size_t, std::size_t)> &separated = {},
+             const std::vector<std::uint8_t> *seeds                         = nullptr);
 
   /// The number of particles.
   std::size_t size() const { return offsets.empty() ? 0 : offsets.size() - 1; }
   /// The neighbours of particle @p p, in increasing order: [begin(p), end(p)).
-  const std::uint32_t *begin(const std::size_t p) const { return &list[offsets[p]]; }
-  const std::uint32_t *end(const std::size_t p) const { return &list[offsets[p + 1]]; }
+  const std::uint32_t *begin(const std::size_t p) const
+  {
+    return list.data() + offsets[p];
+  }
+  const std::uint32_t *end(const std::size_t p) const { return list.data() + ends[p]; }
   /// The total length of the lists.
-  std::size_t n_pairs() const { return list.size(); }
+  std::size_t n_pairs() const { return pairs; }
+  /// Whether particle @p p has its row (a row holds the particle itself, so it is
+  /// never empty); without seeds every particle has one.
+  bool has_row(const std::size_t p) const { return ends[p] > offsets[p]; }
+  /// The number of particles with a row.
+  std::size_t n_rows() const { return rows; }
 
 private:
-  std::vector<std::size_t> offsets;
+  // Row p is list[offsets[p], ends[p]); a row may have room beyond its end.
+  std::vector<std::size_t> offsets, ends;
   std::vector<std::uint32_t> list;
   // Binning scratch, kept between builds.
   std::vector<std::uint32_t> bin_of, bin_start, sorted;
+  std::vector<std::uint8_t> seeded, wanted;
+  std::size_t rows = 0, pairs = 0;
 };
 } // namespace lme_mpm
 

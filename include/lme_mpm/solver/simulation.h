@@ -6,6 +6,7 @@
 #include <deal.II/base/timer.h>
 
 #include <lme_mpm/base/archive.h>
+#include <lme_mpm/base/stage_timer.h>
 #include <lme_mpm/boundary/node_constraints.h>
 #include <lme_mpm/contact/body_contact.h>
 #include <lme_mpm/fracture/crack_set.h>
@@ -138,6 +139,14 @@ private:
   BodyContact<dim> contact;
   /// Work the prescribed bodies did on the others in the current step.
   double contact_work = 0;
+
+  /// Wall time per stage of a step (the table at the end of a run, and summary.json).
+  StageTimer stages;
+  struct StageIds
+  {
+    unsigned int crack_growth, locate, to_grid, rates, stresses_and_forces, stresses,
+        fracture, forces, accelerations, to_particles, contact;
+  } stage{};
 
   ExplicitNewmark newmark;
   double dt = 0, t = 0;
