@@ -105,7 +105,7 @@ template <int dim>
 void FractureCoupling<dim>::prepare(const ParticleStore<dim> &store)
 {
   const std::size_t n = store.size();
-  if (prepared && prepared_size == n)
+  if (prepared_size == n)
     return;
   // On a graded grid each particle's lengths follow the cell it started in; the
   // neighbourhood is searched to the widest radius, and each model keeps the
@@ -152,7 +152,6 @@ void FractureCoupling<dim>::prepare(const ParticleStore<dim> &store)
   fields.energy_density.resize(n);
   seeds.resize(n);
   prepared_size = n;
-  prepared      = true;
 }
 
 template <int dim>
@@ -190,7 +189,7 @@ void FractureCoupling<dim>::update(ParticleStore<dim> &store, const CrackSet<dim
     parallel::for_range(n, [&](const std::size_t b, const std::size_t e)
                         { take_snapshot(store, b, e); });
   }
-  Assert(prepared && prepared_size == n, ExcInternalError());
+  Assert(prepared_size == n, ExcInternalError());
   // Neighbours from the particle's own body only: a tool pressed against a specimen
   // must not enter its onset or energy averages; nor from the other face of an
   // explicit crack. Rows only where a model can act (none before fracture starts).

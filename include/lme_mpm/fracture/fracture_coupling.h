@@ -92,9 +92,9 @@ private:
 
   // Set by prepare() for the particles' count (spacings are of the reference
   // positions, so they hold for the whole run).
-  std::size_t prepared_size = 0;
-  bool prepared             = false;
-  double radius             = 0; ///< of the neighbourhood search
+  static constexpr std::size_t unprepared = static_cast<std::size_t>(-1);
+  std::size_t prepared_size               = unprepared;
+  double radius                           = 0; ///< of the neighbourhood search
   /// Without a model that gives no trigger: rows only around the seeds.
   bool seeded_rows = false;
   /// Threshold per field (FractureTrigger::Field), the lowest of the models'.
