@@ -29,11 +29,7 @@ CentreRatios centre_ratios(const std::string &dir, const double diameter)
 {
   const auto h   = lme_mpm_test::read_history(dir);
   const auto col = [&](const std::string &name)
-  {
-    const auto c = std::find(h.first.begin(), h.first.end(), name) - h.first.begin();
-    EXPECT_LT(static_cast<std::size_t>(c), h.first.size()) << name;
-    return c;
-  };
+  { return lme_mpm_test::column(h.first, name); };
   const auto force = col("force_top_y"), sxx = col("probe_centre_sxx"),
              syy = col("probe_centre_syy");
   CentreRatios r;
@@ -105,11 +101,9 @@ TEST(Brazilian, DiscSplitsFromTheCentreAlongTheLoadedDiameterNearTheTensileStren
   // R/2 of the centre.
   const auto h =
       lme_mpm_test::read_history(lme_mpm_test::scratch_path("brazilian_split"));
-  const auto col = [&](const std::string &name)
-  { return std::find(h.first.begin(), h.first.end(), name) - h.first.begin(); };
-  const auto centre = col("damage_centre"), total = col("damage_total");
-  ASSERT_LT(static_cast<std::size_t>(total), h.first.size());
-  bool found = false;
+  const auto centre = lme_mpm_test::column(h.first, "damage_centre"),
+             total  = lme_mpm_test::column(h.first, "damage_total");
+  bool found        = false;
   for (const auto &row : h.second)
     if (row[total] > 0)
     {
@@ -184,9 +178,8 @@ TEST(MaterialZones, AWeakZoneInsideOneBodyIsWhereTheBarBreaks)
       quiet);
   const std::string dir = lme_mpm_test::scratch_path(tag);
   const auto h          = lme_mpm_test::read_history(dir);
-  const auto force =
-      std::find(h.first.begin(), h.first.end(), "force_right_x") - h.first.begin();
-  double peak = 0;
+  const auto force      = lme_mpm_test::column(h.first, "force_right_x");
+  double peak           = 0;
   for (const auto &row : h.second)
     peak = std::max(peak, row[force] / (0.005 * 0.005));
   std::cout << "zone bar: peak " << peak / 1e6 << " MPa, dissipated "

@@ -33,7 +33,7 @@ double mean_of(const std::string &dir, const std::string &name, const double t0,
                const double t1)
 {
   const auto h   = lme_mpm_test::read_history(dir);
-  const auto c   = std::find(h.first.begin(), h.first.end(), name) - h.first.begin();
+  const auto c   = lme_mpm_test::column(h.first, name);
   double sum     = 0;
   unsigned int n = 0;
   for (const auto &row : h.second)

@@ -6,10 +6,12 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -75,6 +77,15 @@ read_history(const std::string &dir)
   while (std::getline(in, line))
     h.second.push_back(lme_mpm::input::parse_doubles(line, dir + "/history.csv"));
   return h;
+}
+
+/// The index of the column @p name among @p names; throws if there is none.
+inline std::size_t column(const std::vector<std::string> &names, const std::string &name)
+{
+  const auto c = std::find(names.begin(), names.end(), name);
+  if (c == names.end())
+    throw std::runtime_error("history.csv has no column '" + name + "'");
+  return c - names.begin();
 }
 
 /// Runs a scene quietly with overrides; output into a scratch directory.

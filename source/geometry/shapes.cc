@@ -123,8 +123,22 @@ public:
   }
   BoundingBox<dim> bounding_box() const override
   {
+    // The flat edge's ends, and the arc's extreme points along +-x and +-y that lie
+    // on the curved side: the half disc's own box, not the full disc's.
+    double x0 = std::min(cx - r * ny, cx + r * ny),
+           x1 = std::max(cx - r * ny, cx + r * ny);
+    double y0 = std::min(cy + r * nx, cy - r * nx),
+           y1 = std::max(cy + r * nx, cy - r * nx);
+    if (nx >= 0)
+      x1 = cx + r;
+    if (nx <= 0)
+      x0 = cx - r;
+    if (ny >= 0)
+      y1 = cy + r;
+    if (ny <= 0)
+      y0 = cy - r;
     Point<dim> lo, hi;
-    lo[0] = cx - r, hi[0] = cx + r, lo[1] = cy - r, hi[1] = cy + r;
+    lo[0] = x0, hi[0] = x1, lo[1] = y0, hi[1] = y1;
     for (unsigned int d = 2; d < dim; ++d)
       lo[d] = -1e300, hi[d] = 1e300;
     return BoundingBox<dim>({lo, hi});

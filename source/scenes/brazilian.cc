@@ -1,5 +1,5 @@
 #include <lme_mpm/base/input.h>
-#include <lme_mpm/scenes/scene.h>
+#include <lme_mpm/scenes/scene_tools.h>
 
 #include <cmath>
 #include <sstream>
@@ -8,17 +8,6 @@ namespace lme_mpm
 {
 namespace scenes
 {
-namespace
-{
-/// Enough digits that a shape written from the scene's numbers meets the disc.
-std::string num(const double x)
-{
-  std::ostringstream s;
-  s.precision(15);
-  s << x;
-  return s.str();
-}
-} // namespace
 
 /**
  * The Brazilian (splitting) test: a disc of diameter D pressed across its vertical
@@ -131,7 +120,7 @@ public:
     const double R = 0.5 * diameter, b = strip_width;
     const std::string rect_default =
         dim == 2 ? "rectangle(0, 0, 1, 1)" : "rectangle(0, 0, 0, 1, 1, 1)";
-    const std::string disc_shape = cylinder(R);
+    const std::string disc_shape = cylinder_shape<dim>(cx, cy, R, length);
     // Height above the centre where the disc's surface meets x = cx -+ b/2.
     const double rise = std::sqrt(R * R - 0.25 * b * b);
     set_body_entry(prm, n_bodies, disc, "Shape", disc_shape, rect_default, "Scene/Disc");
@@ -149,9 +138,12 @@ public:
       const double half   = 0.5 * b + zone_depth;
       const std::string m = std::to_string(zone_material) + ": ";
       set_body_entry(prm, n_bodies, disc, "Material zones",
-                     m + box(cx - half, cy + rise - zone_depth, cx + half, cy + R) +
+                     m +
+                         box_shape<dim>(cx - half, cy + rise - zone_depth, cx + half,
+                                        cy + R, length) +
                          "; " + m +
-                         box(cx - half, cy - R, cx + half, cy - rise + zone_depth),
+                         box_shape<dim>(cx - half, cy - R, cx + half,
+                                        cy - rise + zone_depth, length),
                      "", "Scene/Elastic zone depth");
     }
     // Each strip: a box from where the disc's surface meets x = cx -+ b/2 outwards,
@@ -163,14 +155,16 @@ public:
       const double inner      = cy + side * rise;
       const double outer      = cy + side * (R + strip_thickness);
       const std::string shape =
-          box(cx - 0.5 * b, std::min(inner, outer), cx + 0.5 * b, std::max(inner, outer));
+          box_shape<dim>(cx - 0.5 * b, std::min(inner, outer), cx + 0.5 * b,
+                         std::max(inner, outer), length);
       set_body_entry(prm, n_bodies, name, "Shape", shape, rect_default, owner);
       set_body_entry(prm, n_bodies, name, "Holes", disc_shape, "", owner);
       // Towards the centre at the loading velocity after a cosine ramp.
-      const std::string speed = ramp > 0 ? "if(t < " + num(ramp) + ", " + num(velocity) +
-                                               " * 0.5 * (1 - cos(pi * t / " + num(ramp) +
-                                               ")), " + num(velocity) + ")"
-                                         : num(velocity);
+      const std::string speed = ramp > 0
+                                    ? "if(t < " + number(ramp) + ", " + number(velocity) +
+                                          " * 0.5 * (1 - cos(pi * t / " + number(ramp) +
+                                          ")), " + number(velocity) + ")"
+                                    : number(velocity);
       std::string expression =
           "0; " + std::string(side > 0 ? "-" : "") + "(" + speed + ")";
       if (dim == 3)
@@ -194,7 +188,7 @@ public:
       AssertThrow(gauge_weight(*state.particles, d, side) > 0,
                   ExcBadInput("Scene/Opening gauge length",
                               "no particle of the disc lies within " +
-                                  num(gauge_radius()) + " m of a gauge point"));
+                                  number(gauge_radius()) + " m of a gauge point"));
   }
 
   void write_history_header(std::ostream &out) const override
@@ -233,7 +227,7 @@ public:
     const unsigned int s = body_index(state, top, "Scene/Top strip");
     const double peak    = (*state.peak_contact_forces)[s];
     if (peak > 0 && (*state.contact_forces)[s].norm() < stop_fraction * peak)
-      return "the load fell below " + num(stop_fraction) + " of its peak";
+      return "the load fell below " + number(stop_fraction) + " of its peak";
     return {};
   }
 
@@ -273,35 +267,6 @@ public:
   }
 
 private:
-  std::string cylinder(const double R) const
-  {
-    std::string s = "cylinder(" + num(cx) + ", " + num(cy) + ", " + num(R);
-    if (dim == 3)
-      s += ", 0, " + num(length);
-    return s + ")";
-  }
-
-  std::string box(const double x0, const double y0, const double x1,
-                  const double y1) const
-  {
-    if (dim == 2)
-      return "rectangle(" + num(x0) + ", " + num(y0) + ", " + num(x1) + ", " + num(y1) +
-             ")";
-    return "rectangle(" + num(x0) + ", " + num(y0) + ", 0, " + num(x1) + ", " + num(y1) +
-           ", " + num(length) + ")";
-  }
-
-  static unsigned int body_index(const SceneState<dim> &state, const std::string &name,
-                                 const std::string &entry)
-  {
-    const auto &names = *state.body_names;
-    for (unsigned int b = 0; b < names.size(); ++b)
-      if (names[b] == name)
-        return b;
-    AssertThrow(false, ExcBadInput(entry, "no Body N/Name is '" + name + "'"));
-    return 0;
-  }
-
   /// Gauge points are material points: particles within this distance (in the x-y
   /// plane) of (cx -+ gauge / 2, cy) in the reference configuration.
   double gauge_radius() const { return 0.02 * diameter; }

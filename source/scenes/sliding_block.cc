@@ -1,5 +1,6 @@
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/scenes/scene.h>
+#include <lme_mpm/scenes/scene_tools.h>
 
 #include <cmath>
 
@@ -101,12 +102,7 @@ public:
 private:
   unsigned int block_index(const SceneState<dim> &state) const
   {
-    const auto &names = *state.body_names;
-    for (unsigned int b = 0; b < names.size(); ++b)
-      if (names[b] == block)
-        return b;
-    AssertThrow(false, ExcBadInput("Scene/Block", "no Body N/Name is '" + block + "'"));
-    return 0;
+    return body_index(state, block, "Scene/Block");
   }
 
   double angle = 30, gravity = 9.81, friction = 0;

@@ -1,0 +1,44 @@
+#ifndef LME_MPM_SCENES_SCENE_TOOLS_H
+#define LME_MPM_SCENES_SCENE_TOOLS_H
+
+#include <lme_mpm/scenes/scene.h>
+
+#include <string>
+
+namespace lme_mpm
+{
+namespace scenes
+{
+/// A number written with enough digits that shapes built from it meet exactly.
+std::string number(double x);
+
+/// "rectangle(...)" of the box [x0, x1] x [y0, y1] (and [0, length] in z in 3D).
+template <int dim>
+std::string box_shape(double x0, double y0, double x1, double y1, double length);
+
+/// "cylinder(...)" of axis (cx, cy) and radius r (along z over [0, length] in 3D).
+template <int dim>
+std::string cylinder_shape(double cx, double cy, double r, double length);
+
+/**
+ * A velocity expression for "Prescribed velocity": @p vx, @p vy (times the ramp) with
+ * a cosine ramp from zero over @p ramp seconds (none if 0), and 0 in z in 3D.
+ */
+template <int dim>
+std::string ramped_velocity(double vx, double vy, double ramp);
+
+/// The index of the body named @p name; throws ExcBadInput naming @p entry if none.
+template <int dim>
+unsigned int body_index(const SceneState<dim> &state, const std::string &name,
+                        const std::string &entry);
+
+/// The mass-weighted mean displacement of the particles of @p body whose reference
+/// position lies within @p radius of @p centre in the x-y plane (0 if none).
+template <int dim>
+Tensor<1, dim> mean_displacement_near(const ParticleStore<dim> &particles,
+                                      unsigned int body, const Point<2> &centre,
+                                      double radius);
+} // namespace scenes
+} // namespace lme_mpm
+
+#endif

@@ -1,0 +1,120 @@
+// Semicircular bending (prm/semicircular_bending.prm): with a vertical notch the
+// specimen cracks along the notch's line up to the loading roller, the two supports
+// carrying half the load each; on a coarse grid the supports balance the load of an
+// inclined notch; the scene's input checks name their entries. These guard the scene's
+// geometry, loading and outputs, not its peak load, which is not yet validated
+// (doc/semicircular_bending.md: the grid ties the notch's faces together).
+#include <gtest/gtest.h>
+
+#include "test_helpers.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace
+{
+/// The coarse, fast run: a 3 mm grid (particles 1.5 mm apart, so the notch is widened
+/// to 3 mm to remove two columns of them) and the loading roller at 20 mm/s.
+std::vector<std::string> coarse(const std::string &angle)
+{
+  return {"Grid/Cell size=0.003", "Scene/Notch width=0.003",
+          "Scene/Loading velocity=0.02", "Time/End time=0.006",
+          "Scene/Notch angle=" + angle};
+}
+} // namespace
+
+TEST(SemicircularBending, VerticalNotchCrackRunsUpTheSymmetryLine)
+{
+  // The scene's own grid and particles; the loading roller at 20 mm/s, ten times the
+  // scene's rate (doc/semicircular_bending.md gives the peak at both rates).
+  const std::string tag = "scb_vertical";
+  const auto r =
+      lme_mpm_test::run_scene("semicircular_bending.prm", tag,
+                              {"Scene/Loading velocity=0.02", "Time/End time=0.015"});
+  std::cout << "peak load " << r.at("peak_force") << " N, supports "
+            << r.at("peak_contact_force_left") << " / "
+            << r.at("peak_contact_force_right") << " N, softened ligament share "
+            << r.at("softened_ligament_share") << std::endl;
+  // It broke: the load fell past its peak (the scene's stop) and the softened band
+  // reaches the top of the arc.
+  EXPECT_EQ(r.at("stopped_early"), 1);
+  EXPECT_GT(r.at("softened_ligament_share"), 0.8);
+  // Symmetry: the two supports carry the same load.
+  EXPECT_NEAR(r.at("peak_contact_force_left"), r.at("peak_contact_force_right"),
+              0.01 * r.at("peak_contact_force_right"));
+  // The crack path: nearly every failed particle started within 6 mm (four cells) of
+  // the notch's line x = 63 mm, and most of them above the notch tip's level (y = 15 +
+  // 16.6 mm) less two cells; the rest sit on the notch's faces, which the grid ties
+  // together.
+  std::ifstream in(lme_mpm_test::scratch_path(tag) + "/failed_particles.csv");
+  ASSERT_TRUE(in.good());
+  std::string line;
+  std::getline(in, line);
+  unsigned int failed = 0, near_line = 0, above_tip = 0;
+  while (std::getline(in, line))
+  {
+    std::stringstream s(line);
+    std::vector<double> v;
+    for (std::string f; std::getline(s, f, ',');)
+      v.push_back(std::stod(f));
+    ASSERT_GE(v.size(), 5u);
+    const bool near = std::abs(v[3] - 0.063) < 0.006;
+    near_line += near;
+    above_tip += near && v[4] > 0.015 + 0.0166 - 0.003;
+    ++failed;
+  }
+  std::cout << failed << " failed particles, " << near_line << " near the notch line, "
+            << above_tip << " of them above the tip" << std::endl;
+  ASSERT_GT(failed, 50u);
+  EXPECT_GT(near_line, 0.95 * failed);
+  EXPECT_GT(above_tip, 0.5 * failed);
+}
+
+TEST(SemicircularBending, SupportsBalanceTheLoadBeforeThePeak)
+{
+  // Quasi-static elastic loading: at every history row past the ramp the supports'
+  // vertical forces sum to the load within 2 % of the load.
+  const std::string tag = "scb_coarse_balance";
+  auto o                = coarse("30");
+  o.push_back("Material 1/Fracture/Model=none");
+  lme_mpm_test::run_scene("semicircular_bending.prm", tag, o);
+  const auto h   = lme_mpm_test::read_history(lme_mpm_test::scratch_path(tag));
+  const auto col = [&](const std::string &name)
+  { return lme_mpm_test::column(h.first, name); };
+  const auto load = col("force_load_y"), left = col("force_left_y"),
+             right  = col("force_right_y");
+  unsigned int rows = 0;
+  double worst      = 0;
+  for (const auto &row : h.second)
+    if (row[1] > 2e-3 && row[load] > 0)
+    {
+      worst = std::max(worst, std::abs(row[load] + row[left] + row[right]) / row[load]);
+      ++rows;
+    }
+  std::cout << rows << " rows, largest imbalance " << worst << " of the load"
+            << std::endl;
+  ASSERT_GT(rows, 10u);
+  EXPECT_LT(worst, 0.02);
+}
+
+TEST(SemicircularBending, BadInputNamesTheEntry)
+{
+  const std::string prm = lme_mpm_test::scene("semicircular_bending.prm");
+  const std::string dir = lme_mpm_test::scratch("scb_bad");
+  const auto error      = [&](const std::vector<std::string> &o)
+  { return lme_mpm_test::run_error(prm, o, dir); };
+  EXPECT_NE(error({"Scene/Notch angle=90"}).find("Scene/Notch angle"), std::string::npos);
+  EXPECT_NE(error({"Scene/Notch angle=-5"}).find("Scene/Notch angle"), std::string::npos);
+  EXPECT_NE(error({"Scene/Notch length=0.05"}).find("Scene/Notch length"),
+            std::string::npos);
+  EXPECT_NE(error({"Scene/Span=0.1"}).find("Scene/Span"), std::string::npos);
+  EXPECT_NE(error({"Scene/Loading velocity=0"}).find("Scene/Loading velocity"),
+            std::string::npos);
+  EXPECT_NE(error({"Scene/Support rollers=left"}).find("Scene/Support rollers"),
+            std::string::npos);
+  EXPECT_NE(error({"Scene/Loading roller=top"}).find("Scene/Loading roller"),
+            std::string::npos);
+  const std::string shape = error({"Body 1/Shape=disc(0.06, 0.04, 0.02)"});
+  EXPECT_NE(shape.find("Body 1/Shape"), std::string::npos) << shape;
+}
