@@ -66,6 +66,7 @@ TEST(Cracks, PairsThatCrossTheCrackUseTheSecondField)
 
   ParticleStore<2> store;
   store.position = {Point<2>(0.4, 0.45), Point<2>(0.4, 0.55), Point<2>(0.75, 0.45)};
+  store.body_id  = {0, 0, 0};
   Connectivity<2> conn;
   conn.resize(3, 4);
   const std::vector<unsigned int> nodes = {on_line, above, below, past_tip};
@@ -311,11 +312,15 @@ struct Halves
   Tensor<1, 2> momentum;
 };
 
-Halves halves(const ParticleStore<2> &store, const double y_crack, const double h)
+/// The halves of body @p body (all particles if it is negative).
+Halves halves(const ParticleStore<2> &store, const double y_crack, const double h,
+              const int body = -1)
 {
   Halves s;
   for (std::size_t p = 0; p < store.size(); ++p)
   {
+    if (body >= 0 && store.body_id[p] != static_cast<unsigned int>(body))
+      continue;
     const unsigned int side = store.reference_position[p][1] < y_crack ? 0 : 1;
     const double m = store.mass[p], v = store.velocity[p][1];
     const double N = std::max(0.0, 1 - std::abs(store.position[p][1] - y_crack) / h);
@@ -430,5 +435,98 @@ TEST(Cracks, FacesThatCollideLoseTheirApproachVelocity)
     EXPECT_NEAR(e0 - min_kinetic, e_approach, 0.05 * e_approach);
     EXPECT_LE(max_total, e0);
     EXPECT_NEAR(e0 - total_at_min, e_faces, 0.5 * e_faces);
+  }
+}
+
+TEST(Cracks, CrackedBodyAndItsNeighbourKeepTheirFieldsApart)
+{
+  // Multi-field contact with an explicit crack. Body 2 is the panel of the collision
+  // test above, cut along y = 0.25 (the crack reaches out to x = 0.7); Body 1, a block
+  // touching its right edge and straddling the crack's line, moves away at v = 0.05.
+  // Body 1 is the lowest at the shared nodes, so there the panel's near face is an
+  // extra field. Expected: the block keeps its momentum exactly (no part of it lands
+  // on a crack field or in the face contact), the panel's momentum is conserved, and
+  // its faces still stop approaching each other. Sending the block's particles that
+  // cross the crack's line to the panel's crack fields ties the block to the panel;
+  // pairing the node's own field (the block's) with the far face moves the block.
+  const double h = 0.05, y_crack = 0.25, v1 = 0.01, v2 = -0.005, v_rel = v1 - v2;
+  const double v_block = 0.05;
+  const std::string text =
+      "subsection Problem\n set Number of bodies = 2\nend\n"
+      "subsection Contact\n set Type = multi-field\nend\n"
+      "subsection Grid\n set Lower corner = -0.25, -0.25\n"
+      " set Upper corner = 1, 0.75\n set Cell size = 0.05\nend\n"
+      "subsection Time\n set End time = 1\n set CFL = 0.3\nend\n"
+      "subsection Shape functions\n set Type = linear\nend\n"
+      "subsection Material 1\n set Model = linear elastic\n set Density = 1\n"
+      " subsection linear elastic\n  set Young's modulus = 1\n"
+      "  set Poisson's ratio = 0\n end\nend\n"
+      "subsection Body 1\n set Shape = rectangle(0.5, 0.1, 0.7, 0.4)\n"
+      " subsection Initial velocity\n  set Function expression = 0.05; 0\n end\nend\n"
+      "subsection Body 2\n set Shape = rectangle(0, 0, 0.5, 0.5)\n"
+      " subsection Initial velocity\n"
+      "  set Function expression = 0; if(y < 0.25, 0.01, -0.005)\n end\nend\n"
+      "subsection Cracks\n set Polylines = -0.2, 0.25, 0.7, 0.25\n set Body = 2\nend\n"
+      "subsection Output\n set Verbosity = 0\n set Directory = " +
+      lme_mpm_test::scratch_path("crack_beside_body") + "\nend\n";
+  ParameterHandler prm;
+  ParameterCounts counts;
+  counts.bodies = 2;
+  Simulation<2>::declare_parameters(prm, counts);
+  prm.parse_input_from_string(text);
+  std::ostringstream quiet;
+  Simulation<2> sim(prm, counts, quiet);
+
+  const auto block_momentum = [&]()
+  {
+    Tensor<1, 2> p;
+    const auto &store = sim.particles();
+    for (std::size_t i = 0; i < store.size(); ++i)
+      if (store.body_id[i] == 0)
+        p += store.mass[i] * store.velocity[i];
+    return p;
+  };
+  const Tensor<1, 2> block_start = block_momentum();
+  const Halves start             = halves(sim.particles(), y_crack, h, 1);
+  ASSERT_NEAR(block_start[0] / v_block, 0.2 * 0.3, 1e-12);
+  double max_block = 0, max_panel = 0, max_face_gap = 0;
+  for (unsigned int n = 1; sim.time() < 0.2; ++n)
+  {
+    sim.step();
+    const Halves s = halves(sim.particles(), y_crack, h, 1);
+    max_block      = std::max(max_block, (block_momentum() - block_start).norm());
+    max_panel      = std::max(max_panel, (s.momentum - start.momentum).norm());
+    if (n >= 10)
+      max_face_gap =
+          std::max(max_face_gap, std::abs(s.face_velocity[0] - s.face_velocity[1]));
+  }
+  std::cout << "crack beside a body: |dp_block| / |p_block| "
+            << max_block / block_start.norm() << ", |dp_panel| / |p_panel| "
+            << max_panel / start.momentum.norm() << ", face velocity gap / v_rel "
+            << max_face_gap / v_rel << std::endl;
+  EXPECT_LT(max_block, 1e-12 * block_start.norm());
+  EXPECT_LT(max_panel, 1e-12 * start.momentum.norm());
+  EXPECT_LT(max_face_gap, 0.05 * v_rel);
+}
+
+TEST(Cracks, BodyOutOfRangeNamesTheEntry)
+{
+  ParameterHandler prm;
+  CrackSet<2>::declare_parameters(prm);
+  prm.enter_subsection("Cracks");
+  prm.set("Polylines", "0, 0, 1, 1");
+  prm.set("Body", "3");
+  prm.leave_subsection();
+  CrackSet<2> cracks;
+  try
+  {
+    cracks.parse_parameters(prm, 2);
+    FAIL() << "a crack in body 3 of 2 was accepted";
+  }
+  catch (const std::exception &e)
+  {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("Cracks/Body"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("[1, 2]"), std::string::npos) << msg;
   }
 }

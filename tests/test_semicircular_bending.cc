@@ -1,9 +1,8 @@
 // Semicircular bending (prm/semicircular_bending.prm): with a vertical notch the
-// specimen cracks along the notch's line up to the loading roller, the two supports
-// carrying half the load each; on a coarse grid the supports balance the load of an
-// inclined notch; the scene's input checks name their entries. These guard the scene's
-// geometry, loading and outputs, not its peak load, which is not yet validated
-// (doc/semicircular_bending.md: the grid ties the notch's faces together).
+// specimen cracks from the notch tip along the notch's line up to the loading roller,
+// the two supports carrying half the load each, at the paper's peak; on a coarse grid
+// the supports balance the load of an inclined notch; the scene's input checks name
+// their entries.
 #include <gtest/gtest.h>
 
 #include "test_helpers.h"
@@ -43,10 +42,13 @@ TEST(SemicircularBending, VerticalNotchCrackRunsUpTheSymmetryLine)
   // Symmetry: the two supports carry the same load.
   EXPECT_NEAR(r.at("peak_contact_force_left"), r.at("peak_contact_force_right"),
               0.01 * r.at("peak_contact_force_right"));
+  // The peak: Molinos et al. simulated 176 N at 2 mm/s (reference/README.md section
+  // 4); the scene gives 173 N at that rate, 176 N at this one. Without the notch crack
+  // the grid ties the notch faces together and the peak is 429 N.
+  EXPECT_NEAR(r.at("peak_force"), 176, 0.1 * 176);
   // The crack path: nearly every failed particle started within 6 mm (four cells) of
-  // the notch's line x = 63 mm, and most of them above the notch tip's level (y = 15 +
-  // 16.6 mm) less two cells; the rest sit on the notch's faces, which the grid ties
-  // together.
+  // the notch's line x = 63 mm and above the notch tip's level (y = 15 + 16.6 mm) less
+  // two cells. With the faces tied, a third of them failed on the faces near the mouth.
   std::ifstream in(lme_mpm_test::scratch_path(tag) + "/failed_particles.csv");
   ASSERT_TRUE(in.good());
   std::string line;
@@ -68,7 +70,7 @@ TEST(SemicircularBending, VerticalNotchCrackRunsUpTheSymmetryLine)
             << above_tip << " of them above the tip" << std::endl;
   ASSERT_GT(failed, 50u);
   EXPECT_GT(near_line, 0.95 * failed);
-  EXPECT_GT(above_tip, 0.5 * failed);
+  EXPECT_GT(above_tip, 0.95 * failed);
 }
 
 TEST(SemicircularBending, SupportsBalanceTheLoadBeforeThePeak)
@@ -115,6 +117,12 @@ TEST(SemicircularBending, BadInputNamesTheEntry)
             std::string::npos);
   EXPECT_NE(error({"Scene/Loading roller=top"}).find("Scene/Loading roller"),
             std::string::npos);
+  EXPECT_NE(error({"Scene/Notch crack overhang=0"}).find("Scene/Notch crack overhang"),
+            std::string::npos);
+  // The notch crack is the scene's: a crack written in the file is refused, naming it.
+  const std::string crack = error({"Cracks/Polylines=0.06, 0.01, 0.06, 0.03"});
+  EXPECT_NE(crack.find("Cracks/Polylines"), std::string::npos) << crack;
+  EXPECT_NE(crack.find("Scene/Notch crack"), std::string::npos) << crack;
   const std::string shape = error({"Body 1/Shape=disc(0.06, 0.04, 0.02)"});
   EXPECT_NE(shape.find("Body 1/Shape"), std::string::npos) << shape;
 }

@@ -386,6 +386,18 @@ void BodyContact<dim>::for_each_body_field(const unsigned int I, const F &f) con
 }
 
 template <int dim>
+unsigned int BodyContact<dim>::field_of_body(const unsigned int I,
+                                             const unsigned int body) const
+{
+  if (!active())
+    return I;
+  const std::uint32_t m = node_bodies[I];
+  if ((m & (std::uint32_t(1) << body)) == 0)
+    return FieldLayout::invalid;
+  return lowest_bit(m) == body ? I : layout->find(I, body);
+}
+
+template <int dim>
 void BodyContact<dim>::impose_prescribed_rates(std::vector<Tensor<1, dim>> &x,
                                                const double t) const
 {

@@ -34,6 +34,7 @@ struct CrackEntries
 {
   std::string polylines;
   bool grow = true, contact = true;
+  unsigned int body = 1;
 
   void entries(EntryList &list)
   {
@@ -47,6 +48,11 @@ struct CrackEntries
         "through intact particles for a sharp crack; one that opens on a free edge "
         "should start a support radius outside it, so that no particle-node line "
         "passes round its mouth. Empty: none.");
+    list.add("Body", body, "1", Patterns::Integer(1),
+             "The body N ('Body N') the cracks cut. Only its particles are sent to the "
+             "second fields, so that with multi-field contact another body near a crack "
+             "keeps its own field and the faces' contact pairs the cracked body's "
+             "fields.");
     list.add("Grow with erosion", grow, "true", Patterns::Bool(),
              "Extend each crack tip along the failed particles ahead of it, so "
              "that a crack grown by eigenerosion or eigensoftening separates the "
@@ -68,7 +74,7 @@ void CrackSet<dim>::declare_parameters(ParameterHandler &prm)
 }
 
 template <int dim>
-void CrackSet<dim>::parse_parameters(ParameterHandler &prm)
+void CrackSet<dim>::parse_parameters(ParameterHandler &prm, const unsigned int n_bodies)
 {
   CrackEntries in;
   EntryList list(prm, EntryList::Mode::parse);
@@ -77,6 +83,12 @@ void CrackSet<dim>::parse_parameters(ParameterHandler &prm)
   contact                 = in.contact;
   const std::string entry = "Cracks/Polylines";
   lines.clear();
+  AssertThrow(in.body >= 1 && in.body <= n_bodies,
+              ExcBadInput("Cracks/Body",
+                          "must name one of the " + std::to_string(n_bodies) +
+                              " bodies: an integer in [1, " + std::to_string(n_bodies) +
+                              "], got " + std::to_string(in.body)));
+  cracked_body = in.body - 1;
   for (const auto &text : input::split(in.polylines, ';'))
   {
     AssertThrow(dim == 2,
@@ -314,6 +326,9 @@ void CrackSet<dim>::separate(const ParticleStore<dim> &particles,
     return;
   for (std::size_t p = begin; p < end; ++p)
   {
+    touched[p] = 0;
+    if (particles.body_id[p] != cracked_body)
+      continue;
     unsigned int *nodes = &conn.nodes[p * conn.stride];
     bool near           = false;
     for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)

@@ -29,28 +29,33 @@ unsigned int find_body(ParameterHandler &prm, const unsigned int n_bodies,
   return 0;
 }
 
-void set_body_entry(ParameterHandler &prm, const unsigned int n_bodies,
-                    const std::string &body, const std::string &entry,
-                    const std::string &value, const std::string &declared_default,
-                    const std::string &owner)
+void set_entry(ParameterHandler &prm, const std::string &entry, const std::string &value,
+               const std::string &declared_default, const std::string &owner,
+               const std::string &why)
 {
-  const unsigned int b          = find_body(prm, n_bodies, body, owner);
-  const std::string section     = input::subsection_name("Body", b);
   std::vector<std::string> path = input::split(entry, '/');
   const std::string key         = path.back();
   path.pop_back();
-  prm.enter_subsection(section);
   for (const auto &s : path)
     prm.enter_subsection(s);
   const std::string given = input::trim(prm.get(key));
   const bool free         = given == declared_default || given == value;
   if (free)
     prm.set(key, value);
-  for (std::size_t i = 0; i <= path.size(); ++i)
+  for (std::size_t i = 0; i < path.size(); ++i)
     prm.leave_subsection();
-  AssertThrow(free, ExcBadInput(section + "/" + entry,
-                                "is set by " + owner + " for body '" + body + "' (to '" +
-                                    value + "'): leave it out of the file"));
+  AssertThrow(free, ExcBadInput(entry, "is set by " + owner + why + " (to '" + value +
+                                           "'): leave it out of the file"));
+}
+
+void set_body_entry(ParameterHandler &prm, const unsigned int n_bodies,
+                    const std::string &body, const std::string &entry,
+                    const std::string &value, const std::string &declared_default,
+                    const std::string &owner)
+{
+  const unsigned int b = find_body(prm, n_bodies, body, owner);
+  set_entry(prm, input::subsection_name("Body", b) + "/" + entry, value, declared_default,
+            owner, " for body '" + body + "'");
 }
 
 template <int dim>

@@ -42,6 +42,19 @@ public:
     prm.declare_entry("Notch width", "0.001", Patterns::Double(),
                       "Semicircular bending: the notch's width (m), > 0; at least the "
                       "particle spacing, or no particle is removed.");
+    prm.declare_entry(
+        "Notch crack", "true", Patterns::Bool(),
+        "Semicircular bending, 2D: an explicit crack (Cracks) on the notch's centre "
+        "line, from Scene/Notch crack overhang outside the flat edge to the notch tip, "
+        "so that the grid does not tie the notch faces together where the notch is "
+        "narrower than the shape functions' support. Not growing: the crack beyond the "
+        "tip is the fracture model's. In 3D there are no explicit cracks and the entry "
+        "must be false.");
+    prm.declare_entry("Notch crack overhang", "0.008", Patterns::Double(),
+                      "Semicircular bending: how far the notch crack reaches past the "
+                      "flat edge along the notch's line (m); at least the shape "
+                      "functions' support radius, so that no particle-node line passes "
+                      "round the crack's mouth; > 0.");
     prm.declare_entry("Span", "0.0475", Patterns::Double(),
                       "Semicircular bending: the distance between the support rollers' "
                       "axes (m), in (0, 2R).");
@@ -87,6 +100,8 @@ public:
     roller              = prm.get_double("Roller radius");
     velocity            = prm.get_double("Loading velocity");
     ramp                = prm.get_double("Loading ramp time");
+    notch_crack         = prm.get_bool("Notch crack");
+    overhang            = prm.get_double("Notch crack overhang");
     zone_depth          = prm.get_double("Elastic zone depth");
     zone_material       = prm.get_integer("Elastic zone material");
     stop_fraction       = prm.get_double("Stop at load fraction");
@@ -116,8 +131,14 @@ public:
     input::require_range(stop_fraction, 0, 1, false, "Scene/Stop at load fraction");
     AssertThrow(stop_fraction < 1,
                 ExcBadInput("Scene/Stop at load fraction", "must lie in [0, 1)"));
+    input::require_range(overhang, 0, big, true, "Scene/Notch crack overhang");
     if (dim == 3)
+    {
       AssertThrow(length > 0, ExcBadInput("Scene/Length", "must be positive"));
+      AssertThrow(!notch_crack,
+                  ExcBadInput("Scene/Notch crack", "must be false in 3D (explicit "
+                                                   "cracks exist in 2D only)"));
+    }
   }
 
   void set_entries(ParameterHandler &prm) const override
@@ -134,6 +155,19 @@ public:
                               number(notch_length) + ", " + number(notch_width) + ", " +
                               number(90 + angle) + ")";
     set_body_entry(prm, n_bodies, specimen, "Holes", notch, "", "Scene/Notch angle");
+    if (notch_crack)
+    {
+      const double a  = (90 + angle) * M_PI / 180;
+      const double ux = std::cos(a), uy = std::sin(a);
+      const std::string line =
+          number(cx - overhang * ux) + ", " + number(cy - overhang * uy) + ", " +
+          number(cx + notch_length * ux) + ", " + number(cy + notch_length * uy);
+      set_entry(prm, "Cracks/Polylines", line, "", "Scene/Notch crack");
+      set_entry(prm, "Cracks/Grow with erosion", "false", "true", "Scene/Notch crack");
+      set_entry(prm, "Cracks/Body",
+                std::to_string(find_body(prm, n_bodies, specimen, "Scene/Specimen") + 1),
+                "1", "Scene/Notch crack");
+    }
     if (zone_depth > 0)
     {
       std::string zones;
@@ -233,6 +267,8 @@ private:
   double radius = 0.0475, length = 0.02, angle = 0, notch_length = 0.0166;
   double notch_width = 0.001, span = 0.0475, roller = 0.005, velocity = 0.002;
   double ramp = 1e-3, zone_depth = 0, stop_fraction = 0.3, cx = 0.063, cy = 0.015;
+  bool notch_crack           = true;
+  double overhang            = 0.008;
   unsigned int zone_material = 2;
   std::string specimen, load, left, right;
 };

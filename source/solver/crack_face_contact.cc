@@ -27,10 +27,16 @@ void CrackFaceContact<dim>::on_rates(const double mass_tolerance)
   const unsigned int n_grid     = nodes.layout.n_grid_nodes();
   // Mass-weighted particle displacements of both fields of the crack nodes (the only
   // entries written and read), summed in the scatter's order.
+  near.resize(cracks.n_crack_nodes());
+  for (unsigned int J = 0; J < cracks.n_crack_nodes(); ++J)
+    near[J] = near_field_of ? near_field_of(cracks.primary_of(J)) : cracks.primary_of(J);
   nodal_displacement.resize(nodes.mass.size());
   for (unsigned int J = 0; J < cracks.n_crack_nodes(); ++J)
-    nodal_displacement[cracks.primary_of(J)] = nodal_displacement[cracks.field_of(J)] =
-        Tensor<1, dim>();
+  {
+    if (near[J] != FieldLayout::invalid)
+      nodal_displacement[near[J]] = Tensor<1, dim>();
+    nodal_displacement[cracks.field_of(J)] = Tensor<1, dim>();
+  }
   transfer.scatter(
       [&](const std::size_t p)
       {
@@ -39,6 +45,9 @@ void CrackFaceContact<dim>::on_rates(const double mass_tolerance)
         const std::size_t o = p * conn.stride;
         const Tensor<1, dim> u =
             particles.mass[p] * (particles.position[p] - particles.reference_position[p]);
+        // touches_crack marks only the cracked body's particles, so every field
+        // summed here is one of its own (a crack node's near or far face, or a
+        // field read by nobody).
         for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
         {
           const unsigned int K = conn.nodes[o + k];
@@ -49,7 +58,9 @@ void CrackFaceContact<dim>::on_rates(const double mass_tolerance)
   faces_closed.assign(cracks.n_crack_nodes(), 0);
   for (unsigned int J = 0; J < cracks.n_crack_nodes(); ++J)
   {
-    const unsigned int I = cracks.primary_of(J), K = cracks.field_of(J);
+    const unsigned int I = near[J], K = cracks.field_of(J);
+    if (I == FieldLayout::invalid)
+      continue;
     const double mI = nodes.mass[I], mK = nodes.mass[K];
     faces_closed[J] =
         mI > mass_tolerance && mK > mass_tolerance &&
@@ -97,7 +108,7 @@ void CrackFaceContact<dim>::equalise(std::vector<Tensor<1, dim>> &x,
   {
     if (!faces_closed[J])
       continue;
-    const unsigned int I = cracks.primary_of(J), K = cracks.field_of(J);
+    const unsigned int I = near[J], K = cracks.field_of(J);
     const Tensor<1, dim> &n = cracks.normal_of(J);
     const double mI = mass[I], mK = mass[K];
     const double vI = velocity(I) * n, vK = velocity(K) * n;

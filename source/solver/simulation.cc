@@ -66,7 +66,7 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
   newmark.gamma = parameters.newmark_gamma;
 
   background.parse_parameters(prm);
-  cracks.parse_parameters(prm);
+  cracks.parse_parameters(prm, counts.bodies);
   materials.parse_parameters(prm, counts.materials, parameters.plane_stress);
   fracture.parse_parameters(prm, materials, background, parameters.thickness);
 
@@ -108,10 +108,12 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
       energy.set_excluded_bodies(contact.prescribed_bodies());
       contact.set_prescribed_velocities(store, 0);
     }
-    // Explicit crack fields belong to one body; with fields per body they would mix.
-    AssertThrow(cracks.empty() || !contact.active(),
-                ExcBadInput("Contact/Type", "multi-field contact and explicit cracks "
-                                            "(Cracks) cannot be combined yet"));
+    // A crack's second fields belong to the cracked body; its faces' contact pairs
+    // them with that body's field at the node, which contact may have moved off the
+    // node's own index.
+    if (contact.active() && !cracks.empty())
+      crack_contact.set_near_field([this](const unsigned int I)
+                                   { return contact.field_of_body(I, cracks.body()); });
     scene->check(scene_state());
   }
   peak_force.parse(parameters.peak_force_set, constraints);

@@ -84,6 +84,14 @@ public:
    */
   void separate(Connectivity<dim> &conn, std::size_t begin, std::size_t end);
 
+  /**
+   * The field body @p body has at grid node @p I this step: I itself where the node
+   * is not shared or the body is the lowest there, its extra field otherwise, and
+   * FieldLayout::invalid where the body cannot reach the node. Call after
+   * assign_fields().
+   */
+  unsigned int field_of_body(unsigned int I, unsigned int body) const;
+
   /// The prescribed bodies' velocities at @p t on their fields' rates.
   void impose_prescribed_rates(std::vector<Tensor<1, dim>> &x, double t) const;
   /// Their time derivatives (central difference of half-width @p h) at @p t.

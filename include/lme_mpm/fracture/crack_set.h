@@ -43,12 +43,15 @@ class CrackSet
 {
 public:
   static void declare_parameters(ParameterHandler &prm);
-  /// Reads the "Cracks" subsection; explicit cracks exist in 2D only.
-  void parse_parameters(ParameterHandler &prm);
+  /// Reads the "Cracks" subsection; explicit cracks exist in 2D only. "Cracks/Body"
+  /// must be one of the @p n_bodies.
+  void parse_parameters(ParameterHandler &prm, unsigned int n_bodies = 1);
 
   bool empty() const { return lines.empty(); }
   const std::vector<std::vector<Point<dim>>> &polylines() const { return lines; }
   bool face_contact() const { return contact; }
+  /// The (0-based) body the cracks cut; other bodies' particles keep their fields.
+  unsigned int body() const { return cracked_body; }
 
   /**
    * Gives a second field, tagged FieldLayout::crack_side in @p layout, to every node
@@ -68,9 +71,10 @@ public:
   unsigned int primary_of(const unsigned int J) const { return extra_primary[J]; }
   unsigned int field_of(const unsigned int J) const { return extra_field[J]; }
   const Tensor<1, dim> &normal_of(const unsigned int J) const { return extra_normal[J]; }
-  /// Sends the particle-node pairs of [begin, end) that cross a crack to the second
-  /// fields, and sets touched[p] to 1 for a particle with a node that has one (0
-  /// otherwise). Pure function of positions and connectivity: thread-safe per range.
+  /// Sends the particle-node pairs of [begin, end) of the cracked body that cross a
+  /// crack to the second fields, and sets touched[p] to 1 for such a particle with a
+  /// node that has one (0 otherwise). Pure function of positions and connectivity:
+  /// thread-safe per range.
   void separate(const ParticleStore<dim> &particles, const BackgroundGrid<dim> &grid,
                 Connectivity<dim> &conn, std::size_t begin, std::size_t end,
                 std::uint8_t *touched) const;
@@ -93,6 +97,7 @@ private:
 
   std::vector<std::vector<Point<dim>>> lines;
   bool growing = true, contact = true;
+  unsigned int cracked_body = 0;
   // Per grid node: its crack node index J (or invalid); per crack node: grid node,
   // second field, normal, and the crack segments (line, first point) within reach,
   // in compressed rows.

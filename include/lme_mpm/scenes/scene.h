@@ -98,6 +98,14 @@ unsigned int find_body(ParameterHandler &prm, unsigned int n_bodies,
 void set_body_entry(ParameterHandler &prm, unsigned int n_bodies, const std::string &body,
                     const std::string &entry, const std::string &value,
                     const std::string &declared_default, const std::string &owner);
+/**
+ * Sets @p entry (a path from the top level, 'Cracks/Polylines') to @p value on behalf
+ * of scene entry @p owner, under the same rule as set_body_entry(); @p why is added
+ * to the error message after the owner.
+ */
+void set_entry(ParameterHandler &prm, const std::string &entry, const std::string &value,
+               const std::string &declared_default, const std::string &owner,
+               const std::string &why = "");
 
 /// Declares "Scene/Type" and every registered scene's entries beside it.
 template <int dim>

@@ -6,6 +6,7 @@
 #include <lme_mpm/solver/grid_transfer.h>
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace lme_mpm
@@ -32,6 +33,17 @@ public:
   /// crack node (sized for this step).
   std::uint8_t *touched(std::size_t n_particles);
 
+  /**
+   * Where the cracked body's field at a grid node is not the node's own index (with
+   * multi-field contact, another body may hold it): @p f maps grid node I to that
+   * field, or to FieldLayout::invalid where the body does not reach I this step.
+   * Without it the node's own field is the near face.
+   */
+  void set_near_field(std::function<unsigned int(unsigned int)> f)
+  {
+    near_field_of = std::move(f);
+  }
+
   /// Decides which faces are closed and makes their approaching rates equal.
   void on_rates(double mass_tolerance);
   /// The same on the accelerations, for the trial end-of-step velocity of the
@@ -48,6 +60,9 @@ private:
   const CrackSet<dim> &cracks;
   GridTransfer<dim> &transfer;
   const ParticleStore<dim> &particles;
+  std::function<unsigned int(unsigned int)> near_field_of;
+  /// Per crack node this step: the near face's field (see set_near_field()).
+  std::vector<unsigned int> near;
   std::vector<std::uint8_t> touches_crack, faces_closed;
   std::vector<Tensor<1, dim>> nodal_displacement;
 };
