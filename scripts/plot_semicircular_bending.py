@@ -11,46 +11,25 @@ summary.json, damage.csv). The load is force_load_y (N, whole specimen thickness
 displacement is -displacement_load_y (mm). The damage is the particles' effective
 damage chi in [0, 1] (damage.csv, body 0 = the specimen).
 """
-import argparse
-import csv
 import json
 import os
-import sys
 
 import matplotlib
+from scene_plots import parse_runs, read_rows
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
-def read_rows(path):
-    if not os.path.exists(path):
-        sys.exit("%s: missing (is it a semicircular bending run?)" % path)
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    if not rows:
-        sys.exit("%s: no rows" % path)
-    return rows
-
-
 def main():
-    ap = argparse.ArgumentParser(description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("runs", nargs="+", help="output directories")
-    ap.add_argument("--labels", help="comma-separated titles, one per run")
-    ap.add_argument("--out", default="semicircular_bending.png")
-    args = ap.parse_args()
-    labels = args.labels.split(",") if args.labels else [os.path.basename(
-        os.path.normpath(r)) for r in args.runs]
-    if len(labels) != len(args.runs):
-        sys.exit("--labels needs one title per run")
+    args, labels = parse_runs(__doc__, "semicircular_bending.png")
 
     n = len(args.runs)
     fig, axes = plt.subplots(2, n, figsize=(4.2 * n, 6.4), squeeze=False)
     for i, run in enumerate(args.runs):
-        damage = [r for r in read_rows(os.path.join(run, "damage.csv"))
+        damage = [r for r in read_rows(os.path.join(run, "damage.csv"), "semicircular bending")
                   if r.get("body", "0") == "0"]
-        history = read_rows(os.path.join(run, "history.csv"))
+        history = read_rows(os.path.join(run, "history.csv"), "semicircular bending")
         with open(os.path.join(run, "summary.json")) as f:
             summary = json.load(f)
         x = [1e3 * float(r["x0_0"]) for r in damage]

@@ -62,15 +62,15 @@ void FractureCoupling<dim>::parse_parameters(ParameterHandler &prm,
 }
 
 template <int dim>
-void FractureCoupling<dim>::check_neighbourhood(const unsigned int material,
-                                                const unsigned int particles_per_cell,
-                                                const std::string &body_section) const
+void FractureCoupling<dim>::check_neighbourhood(
+    const unsigned int material, const unsigned int particles_per_cell,
+    const std::string &body_section, const std::vector<std::uint8_t> *occupied) const
 {
   if (!models[material])
     return;
   // The particle's h is its cell's shortest side; the particles are spaced by up to the
-  // longest side / particles_per_cell. The worst cell decides (on a uniform grid
-  // every particle uses the grid's smallest spacing).
+  // longest side / particles_per_cell. The worst cell the body occupies decides (on a
+  // uniform grid every particle uses the grid's smallest spacing).
   double worst_margin = std::numeric_limits<double>::max(), h = 0, H = 0;
   std::array<unsigned int, dim> ijk{};
   for (unsigned int c = 0; c < grid->n_cells(); ++c)
@@ -82,7 +82,7 @@ void FractureCoupling<dim>::check_neighbourhood(const unsigned int material,
     if (uniform_grid)
       lo = grid->min_spacing();
     const double margin = models[material]->epsilon(lo) * particles_per_cell / hi;
-    if (margin < worst_margin)
+    if (margin < worst_margin && (occupied == nullptr || (*occupied)[c]))
       worst_margin = margin, h = lo, H = hi;
     for (unsigned int d = 0; d < dim && ++ijk[d] == grid->n_cells_in(d); ++d)
       ijk[d] = 0;

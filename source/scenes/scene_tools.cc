@@ -15,6 +15,16 @@ std::string number(const double x)
   return s.str();
 }
 
+void set_notch_crack(ParameterHandler &prm, const unsigned int n_bodies,
+                     const std::string &body, const std::string &polyline,
+                     const std::string &owner)
+{
+  set_entry(prm, "Cracks/Polylines", polyline, "", owner);
+  set_entry(prm, "Cracks/Grow with erosion", "false", "true", owner);
+  set_entry(prm, "Cracks/Body", std::to_string(find_body(prm, n_bodies, body, owner) + 1),
+            "1", owner);
+}
+
 template <int dim>
 std::string box_shape(const double x0, const double y0, const double x1, const double y1,
                       const double length)
@@ -47,6 +57,16 @@ std::string ramped_velocity(const double vx, const double vy, const double ramp)
   if (dim == 3)
     s += "; 0";
   return s;
+}
+
+template <int dim>
+double damaged_volume(const ParticleStore<dim> &p, const unsigned int body)
+{
+  double damaged = 0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.body_id[i] == body && p.damage[i] > 0)
+      damaged += p.damage[i] * p.mass[i] / p.density[i];
+  return damaged;
 }
 
 template <int dim>
@@ -87,6 +107,8 @@ template std::string cylinder_shape<2>(double, double, double, double);
 template std::string cylinder_shape<3>(double, double, double, double);
 template std::string ramped_velocity<2>(double, double, double);
 template std::string ramped_velocity<3>(double, double, double);
+template double damaged_volume(const ParticleStore<2> &, unsigned int);
+template double damaged_volume(const ParticleStore<3> &, unsigned int);
 template unsigned int body_index(const SceneState<2> &, const std::string &,
                                  const std::string &);
 template unsigned int body_index(const SceneState<3> &, const std::string &,

@@ -162,11 +162,7 @@ public:
       const std::string line =
           number(cx - overhang * ux) + ", " + number(cy - overhang * uy) + ", " +
           number(cx + notch_length * ux) + ", " + number(cy + notch_length * uy);
-      set_entry(prm, "Cracks/Polylines", line, "", "Scene/Notch crack");
-      set_entry(prm, "Cracks/Grow with erosion", "false", "true", "Scene/Notch crack");
-      set_entry(prm, "Cracks/Body",
-                std::to_string(find_body(prm, n_bodies, specimen, "Scene/Specimen") + 1),
-                "1", "Scene/Notch crack");
+      set_notch_crack(prm, n_bodies, specimen, line, "Scene/Notch crack");
     }
     if (zone_depth > 0)
     {
@@ -218,10 +214,7 @@ public:
     const double g = 2.5 * notch_width, r = notch_width;
     const double opening = mean_displacement_near(p, s, Point<2>(cx + g, cy), r)[0] -
                            mean_displacement_near(p, s, Point<2>(cx - g, cy), r)[0];
-    double damaged = 0;
-    for (std::size_t i = 0; i < p.size(); ++i)
-      if (p.body_id[i] == s && p.damage[i] > 0)
-        damaged += p.damage[i] * p.mass[i] / p.density[i];
+    const double damaged = damaged_volume(p, s);
     out << "," << opening << "," << damaged;
   }
 

@@ -48,12 +48,13 @@ public:
   }
   /**
    * Throws unless the neighbourhood of @p material is at least as wide as the spacing
-   * h / @p particles_per_cell of the particles @p body_section places, in the
-   * smallest and the largest cells of the grid (a narrower one holds the particle
-   * alone, and the criterion would average nothing).
+   * h / @p particles_per_cell of the particles @p body_section places, in every cell
+   * the body occupies (@p occupied, per cell; null: every cell of the grid) (a
+   * narrower one holds the particle alone, and the criterion would average nothing).
    */
   void check_neighbourhood(unsigned int material, unsigned int particles_per_cell,
-                           const std::string &body_section) const;
+                           const std::string &body_section,
+                           const std::vector<std::uint8_t> *occupied = nullptr) const;
 
   /**
    * Sizes the snapshot for @p particles; call before take_snapshot() in each step

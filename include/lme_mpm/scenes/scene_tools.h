@@ -27,6 +27,20 @@ std::string cylinder_shape(double cx, double cy, double r, double length);
 template <int dim>
 std::string ramped_velocity(double vx, double vy, double ramp);
 
+/**
+ * Writes the entries of an explicit, non-growing crack along @p polyline ("x0, y0, x1,
+ * y1, ...") that cuts only the body named @p body: Cracks/Polylines, Cracks/Grow with
+ * erosion = false and Cracks/Body, on behalf of scene entry @p owner (under the rule
+ * of set_entry()). A notch narrower than the shape functions' support needs one, or
+ * the grid ties its faces together.
+ */
+void set_notch_crack(ParameterHandler &prm, unsigned int n_bodies,
+                     const std::string &body, const std::string &polyline,
+                     const std::string &owner);
+/// The damaged volume of @p body: sum of damage times volume over its particles (m^3
+/// in 3D, m^2 in 2D).
+template <int dim>
+double damaged_volume(const ParticleStore<dim> &particles, unsigned int body);
 /// The index of the body named @p name; throws ExcBadInput naming @p entry if none.
 template <int dim>
 unsigned int body_index(const SceneState<dim> &state, const std::string &name,

@@ -1,0 +1,70 @@
+#!/usr/bin/python3
+"""Drop-weight impact: for each run, the impact force and the summed support reaction
+against the time from the first contact, with the peaks of the paper's simulation
+(reference/README.md section 5) marked, above the beam's final damage drawn on its
+reference configuration (the crack pattern), in one PNG.
+
+    /usr/bin/python3 scripts/plot_drop_weight.py out/v264 out/v176 out/v088 \\
+        --labels "2.64 m/s,1.76 m/s,0.881 m/s" --out drop_weight.png
+
+Each argument is an output directory of prm/drop_weight.prm (history.csv,
+summary.json, damage.csv). Forces are impact_force and reaction_force (kN, for the
+beam's real thickness); damage is the particles' effective damage chi in [0, 1]
+(damage.csv, body 0 = the beam).
+"""
+import json
+import os
+
+import matplotlib
+from scene_plots import parse_runs, read_rows
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+# Molinos et al., simulated at 2.64 m/s: (time from contact in ms, force in kN).
+PAPER_IMPACT = (0.139, 105.6)
+PAPER_REACTION = (0.205, 59.5)
+
+
+def main():
+    args, labels = parse_runs(__doc__, "drop_weight.png")
+
+    n = len(args.runs)
+    fig, axes = plt.subplots(2, n, figsize=(5.0 * n, 6.0), squeeze=False)
+    for i, run in enumerate(args.runs):
+        history = read_rows(os.path.join(run, "history.csv"), "drop-weight")
+        with open(os.path.join(run, "summary.json")) as f:
+            summary = json.load(f)
+        t0 = summary.get("time_of_first_contact", 0.0)
+        t = [1e3 * (float(r["time"]) - t0) for r in history]
+        top = axes[0][i]
+        top.plot(t, [1e-3 * float(r["impact_force"]) for r in history], label="impact")
+        top.plot(t, [1e-3 * float(r["reaction_force"]) for r in history],
+                 label="supports, summed")
+        top.plot(*PAPER_IMPACT, "v", color="C0", label="paper: impact peak")
+        top.plot(*PAPER_REACTION, "^", color="C1", label="paper: reaction peak")
+        top.set_xlabel("time from first contact (ms)")
+        top.set_ylabel("force (kN)")
+        top.set_title("%s: peaks %.0f / %.0f kN" % (
+            labels[i], 1e-3 * summary.get("peak_impact_force", 0),
+            1e-3 * summary.get("peak_reaction_force", 0)))
+        top.grid(alpha=0.3)
+        top.legend(fontsize=7)
+        damage = [r for r in read_rows(os.path.join(run, "damage.csv"), "drop-weight")
+                  if r.get("body", "0") == "0"]
+        bottom = axes[1][i]
+        sc = bottom.scatter([1e3 * float(r["x0_0"]) for r in damage],
+                            [1e3 * float(r["x0_1"]) for r in damage],
+                            c=[float(r["damage"]) for r in damage], s=0.6,
+                            cmap="inferno_r", vmin=0, vmax=1)
+        bottom.set_aspect("equal")
+        bottom.set_xlabel("x (mm)")
+        bottom.set_ylabel("y (mm)")
+        fig.colorbar(sc, ax=bottom, shrink=0.6, label="damage")
+    fig.tight_layout()
+    fig.savefig(args.out, dpi=110)
+    print("wrote", args.out)
+
+
+if __name__ == "__main__":
+    main()

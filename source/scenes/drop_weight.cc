@@ -1,0 +1,267 @@
+#include <lme_mpm/base/input.h>
+#include <lme_mpm/scenes/scene_tools.h>
+
+#include <cmath>
+#include <limits>
+
+namespace lme_mpm
+{
+namespace scenes
+{
+/**
+ * Drop-weight impact on a notched beam: a beam of given length and depth, notched
+ * from the middle of its bottom face, rests on two support cylinders at a span
+ * symmetric about the notch; a rectangular hammer of given mass starts on its top face
+ * at mid-span moving down at the impact velocity. The scene writes the bodies' shapes,
+ * the notch (and an explicit crack on its centre line that keeps the notch faces
+ * apart), the supports' (zero) velocity, the hammer's initial velocity and its
+ * material's density from the hammer's mass.
+ *
+ * History: impact_force (the contact force on the hammer, upwards, N, for the real
+ * thickness), hammer_momentum_rate (the change of the hammer's momentum over the row's
+ * interval divided by its length: the same force measured on the particles),
+ * reaction_force (the upward forces of the supports on the beam, summed), cmod
+ * (crack-mouth opening) and damage_total. Summary: the peaks of the impact and reaction
+ * forces and their times from the first contact.
+ */
+template <int dim>
+class DropWeight : public Scene<dim>
+{
+public:
+  static void declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Beam centre", "0.23, 0.025", Patterns::Anything(),
+                      "Drop weight: the middle of the beam's bottom face (x, y in m), "
+                      "where the notch starts.");
+    prm.declare_entry("Beam length", "0.42", Patterns::Double(),
+                      "Drop weight: the beam's length along x (m), > span.");
+    prm.declare_entry("Beam depth", "0.1", Patterns::Double(),
+                      "Drop weight: the beam's depth along y (m), > 0.");
+    prm.declare_entry("Length", "0.1", Patterns::Double(),
+                      "Drop weight, 3D only: the beam's width along z (m), from z = 0. "
+                      "In 2D it is Problem/Thickness.");
+    prm.declare_entry("Span", "0.3", Patterns::Double(),
+                      "Drop weight: the distance between the supports' axes (m), in "
+                      "(0, beam length).");
+    prm.declare_entry("Support radius", "0.01", Patterns::Double(),
+                      "Drop weight: the support cylinders' radius (m), > 0.");
+    prm.declare_entry("Notch depth", "0.05", Patterns::Double(),
+                      "Drop weight: the notch's depth from the bottom face (m), in "
+                      "(0, beam depth).");
+    prm.declare_entry("Notch width", "0.0025", Patterns::Double(),
+                      "Drop weight: the notch's width (m), > 0; at least the particle "
+                      "spacing, or no particle is removed.");
+    prm.declare_entry("Notch crack", "true", Patterns::Bool(),
+                      "Drop weight, 2D: an explicit crack (Cracks) on the notch's centre "
+                      "line from Scene/Notch crack overhang below the bottom face to the "
+                      "notch tip, so that the grid does not tie the notch faces "
+                      "together. Must be false in 3D.");
+    prm.declare_entry("Notch crack overhang", "0.015", Patterns::Double(),
+                      "Drop weight: how far the notch crack reaches below the bottom "
+                      "face (m); at least the shape functions' support radius; > 0.");
+    prm.declare_entry("Hammer width", "0.05", Patterns::Double(),
+                      "Drop weight: the hammer's width along x (m), > 0.");
+    prm.declare_entry("Hammer height", "0.05", Patterns::Double(),
+                      "Drop weight: the hammer's height along y (m), > 0.");
+    prm.declare_entry("Hammer mass", "120.6", Patterns::Double(),
+                      "Drop weight: the hammer's mass (kg) over the real thickness "
+                      "(Problem/Thickness in 2D, Scene/Length in 3D); sets the density "
+                      "of the hammer's material, > 0.");
+    prm.declare_entry("Impact velocity", "2.64", Patterns::Double(),
+                      "Drop weight: the hammer's downward speed at first contact (m/s), "
+                      "> 0.");
+    prm.declare_entry("Beam", "beam", Patterns::Anything(),
+                      "Drop weight: the Body N/Name of the beam.");
+    prm.declare_entry("Hammer", "hammer", Patterns::Anything(),
+                      "Drop weight: the Body N/Name of the hammer.");
+    prm.declare_entry("Supports", "left, right", Patterns::Anything(),
+                      "Drop weight: the Body N/Name of the supports at -x and +x.");
+  }
+
+  DropWeight(ParameterHandler &prm, const SceneContext<dim> &context)
+      : n_bodies(context.n_bodies)
+  {
+    length              = prm.get_double("Beam length");
+    depth               = prm.get_double("Beam depth");
+    width               = dim == 3 ? prm.get_double("Length") : context.thickness;
+    span                = prm.get_double("Span");
+    support             = prm.get_double("Support radius");
+    notch_depth         = prm.get_double("Notch depth");
+    notch_width         = prm.get_double("Notch width");
+    notch_crack         = prm.get_bool("Notch crack");
+    overhang            = prm.get_double("Notch crack overhang");
+    hammer_width        = prm.get_double("Hammer width");
+    hammer_height       = prm.get_double("Hammer height");
+    hammer_mass         = prm.get_double("Hammer mass");
+    velocity            = prm.get_double("Impact velocity");
+    beam                = input::trim(prm.get("Beam"));
+    hammer              = input::trim(prm.get("Hammer"));
+    const auto supports = input::split(prm.get("Supports"), ',');
+    AssertThrow(supports.size() == 2,
+                ExcBadInput("Scene/Supports", "needs two names, 'left, right'"));
+    left         = input::trim(supports[0]);
+    right        = input::trim(supports[1]);
+    const auto c = input::parse_doubles(prm.get("Beam centre"), "Scene/Beam centre");
+    AssertThrow(c.size() == 2,
+                ExcBadInput("Scene/Beam centre", "needs two numbers: x, y"));
+    cx = c[0], cy = c[1];
+    const double big = 1e300;
+    input::require_range(length, 0, big, true, "Scene/Beam length");
+    input::require_range(depth, 0, big, true, "Scene/Beam depth");
+    input::require_range(width, 0, big, true,
+                         dim == 3 ? "Scene/Length" : "Problem/Thickness");
+    input::require_range(span, 0, length, true, "Scene/Span");
+    input::require_range(support, 0, big, true, "Scene/Support radius");
+    input::require_range(notch_depth, 0, depth, true, "Scene/Notch depth");
+    input::require_range(notch_width, 0, span, true, "Scene/Notch width");
+    input::require_range(overhang, 0, big, true, "Scene/Notch crack overhang");
+    input::require_range(hammer_width, 0, length, true, "Scene/Hammer width");
+    input::require_range(hammer_height, 0, big, true, "Scene/Hammer height");
+    input::require_range(hammer_mass, 0, big, true, "Scene/Hammer mass");
+    input::require_range(velocity, 0, big, true, "Scene/Impact velocity");
+    if (dim == 3)
+      AssertThrow(!notch_crack,
+                  ExcBadInput("Scene/Notch crack", "must be false in 3D (explicit "
+                                                   "cracks exist in 2D only)"));
+  }
+
+  void set_entries(ParameterHandler &prm) const override
+  {
+    const std::string rect_default =
+        dim == 2 ? "rectangle(0, 0, 1, 1)" : "rectangle(0, 0, 0, 1, 1, 1)";
+    const std::string zero = dim == 2 ? "0; 0" : "0; 0; 0";
+    set_body_entry(
+        prm, n_bodies, beam, "Shape",
+        box_shape<dim>(cx - 0.5 * length, cy, cx + 0.5 * length, cy + depth, width),
+        rect_default, "Scene/Beam");
+    // The notch, open below the bottom face by a margin that holds no particle.
+    set_body_entry(prm, n_bodies, beam, "Holes",
+                   box_shape<dim>(cx - 0.5 * notch_width, cy - 0.5 * notch_width,
+                                  cx + 0.5 * notch_width, cy + notch_depth, width),
+                   "", "Scene/Notch depth");
+    if (notch_crack)
+    {
+      const std::string line = number(cx) + ", " + number(cy - overhang) + ", " +
+                               number(cx) + ", " + number(cy + notch_depth);
+      set_notch_crack(prm, n_bodies, beam, line, "Scene/Notch crack");
+    }
+    for (const int side : {-1, 1})
+    {
+      const std::string &name = side < 0 ? left : right;
+      set_body_entry(
+          prm, n_bodies, name, "Shape",
+          cylinder_shape<dim>(cx + 0.5 * side * span, cy - support, support, width),
+          rect_default, "Scene/Supports");
+      set_body_entry(prm, n_bodies, name, "Prescribed velocity/Function expression",
+                     ramped_velocity<dim>(0, 0, 0), "", "Scene/Supports");
+    }
+    const double top = cy + depth;
+    set_body_entry(prm, n_bodies, hammer, "Shape",
+                   box_shape<dim>(cx - 0.5 * hammer_width, top, cx + 0.5 * hammer_width,
+                                  top + hammer_height, width),
+                   rect_default, "Scene/Hammer");
+    set_body_entry(prm, n_bodies, hammer, "Initial velocity/Function expression",
+                   dim == 2 ? "0; " + number(-velocity)
+                            : "0; " + number(-velocity) + "; 0",
+                   zero, "Scene/Impact velocity");
+    // The hammer's material gets the density that gives it its mass.
+    const unsigned int h = find_body(prm, n_bodies, hammer, "Scene/Hammer");
+    prm.enter_subsection(input::subsection_name("Body", h));
+    const std::string material = input::trim(prm.get("Material"));
+    prm.leave_subsection();
+    const double density = hammer_mass / (hammer_width * hammer_height * width);
+    set_entry(prm, "Material " + material + "/Density", number(density), "1000",
+              "Scene/Hammer mass", " for the hammer's material");
+  }
+
+  void check(const SceneState<dim> &state) const override
+  {
+    (void)body_index(state, beam, "Scene/Beam");
+    (void)body_index(state, hammer, "Scene/Hammer");
+    (void)body_index(state, left, "Scene/Supports");
+    (void)body_index(state, right, "Scene/Supports");
+    AssertThrow(state.contact_forces != nullptr,
+                ExcBadInput("Contact/Type", "the drop-weight scene needs multi-field "
+                                            "contact (hammer, beam and supports)"));
+  }
+
+  void write_history_header(std::ostream &out) const override
+  {
+    out << ",impact_force,hammer_momentum_rate,reaction_force,cmod,damage_total";
+  }
+
+  void write_history_row(std::ostream &out, const SceneState<dim> &state) const override
+  {
+    const ParticleStore<dim> &p = *state.particles;
+    const unsigned int b        = body_index(state, beam, "Scene/Beam");
+    const unsigned int h        = body_index(state, hammer, "Scene/Hammer");
+    const auto &force           = *state.contact_forces;
+    const double impact         = force[h][1];
+    // What the supports push the beam up with: minus the forces they receive.
+    const double reaction = -force[body_index(state, left, "Scene/Supports")][1] -
+                            force[body_index(state, right, "Scene/Supports")][1];
+    // The hammer's momentum (for the real thickness in 2D: particle masses already
+    // carry it).
+    double momentum = 0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p.body_id[i] == h)
+        momentum += p.mass[i] * p.velocity[i][1];
+    double rate = 0;
+    if (state.time > last_time)
+      rate = (momentum - last_momentum) / (state.time - last_time);
+    // The crack mouth: material points on the bottom face 2 mm outside the notch.
+    const double g = 0.5 * notch_width + 0.002, r = 0.0015;
+    const double cmod = mean_displacement_near(p, b, Point<2>(cx + g, cy + r), r)[0] -
+                        mean_displacement_near(p, b, Point<2>(cx - g, cy + r), r)[0];
+    const double damaged = damaged_volume(p, b);
+    // Peaks, timed from the start of the first interval with a contact force.
+    if (first_contact < 0 && std::abs(impact) > 0)
+      first_contact = last_time;
+    if (first_contact >= 0)
+    {
+      if (impact > peak_impact)
+        peak_impact = impact, time_of_peak_impact = state.time - first_contact;
+      if (reaction > peak_reaction)
+        peak_reaction = reaction, time_of_peak_reaction = state.time - first_contact;
+    }
+    last_time     = state.time;
+    last_momentum = momentum;
+    out << "," << impact << "," << rate << "," << reaction << "," << cmod << ","
+        << damaged;
+  }
+
+  void add_results(const SceneState<dim> &,
+                   std::map<std::string, double> &results) const override
+  {
+    if (first_contact < 0)
+      return;
+    results["peak_impact_force"]           = peak_impact;
+    results["time_of_peak_impact_force"]   = time_of_peak_impact;
+    results["peak_reaction_force"]         = peak_reaction;
+    results["time_of_peak_reaction_force"] = time_of_peak_reaction;
+    results["time_of_first_contact"]       = first_contact;
+  }
+
+private:
+  unsigned int n_bodies;
+  double length = 0.42, depth = 0.1, width = 0.1, span = 0.3, support = 0.01;
+  double notch_depth = 0.05, notch_width = 0.0025, overhang = 0.015;
+  double hammer_width = 0.05, hammer_height = 0.05, hammer_mass = 120.6;
+  double velocity = 2.64, cx = 0.23, cy = 0.025;
+  bool notch_crack = true;
+  std::string beam, hammer, left, right;
+  // What the history rows have seen (the rows are written in order; a resumed run
+  // starts them again from its first row).
+  mutable double last_time = 0, last_momentum = 0, first_contact = -1;
+  mutable double peak_impact = 0, time_of_peak_impact = 0;
+  mutable double peak_reaction = 0, time_of_peak_reaction = 0;
+};
+} // namespace scenes
+} // namespace lme_mpm
+
+using lme_mpm::scenes::DropWeight;
+LME_MPM_REGISTER_SCENE(DropWeight, "drop weight",
+                       "a notched beam on two supports struck at mid-span by a hammer "
+                       "(Scene/Impact velocity); writes the bodies' shapes, the hammer's "
+                       "velocity and density, reports the peak impact and reaction "
+                       "forces and their times.")
