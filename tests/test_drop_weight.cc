@@ -2,13 +2,15 @@
 // 0.15 ms: the hammer starts with the kinetic energy of 120.6 kg at 2.64 m/s, the
 // impact force the contact reports is the rate of change of the hammer's momentum,
 // the supports feel nothing before the stress wave can have reached them, the energy
-// balance closes and the summary gives the peaks in order; the scene's input checks
-// name their entries.
+// balance closes and the summary gives the peaks in order; a resumed run reports
+// what the uninterrupted one does; the scene's input checks name their entries.
 #include <gtest/gtest.h>
 
 #include "test_helpers.h"
 
 #include <cmath>
+#include <map>
+#include <sstream>
 
 namespace
 {
@@ -63,6 +65,35 @@ TEST(DropWeight, ImpactForceIsTheHammersMomentumRateAndTheSupportsWaitForTheWave
   EXPECT_GT(r.at("peak_reaction_force"), 0);
   EXPECT_LT(r.at("time_of_peak_impact_force"), r.at("time_of_peak_reaction_force"));
   EXPECT_LT(r.at("max_energy_drift"), 0.005);
+}
+
+TEST(DropWeight, ResumedRunReportsWhatTheUninterruptedOneDoes)
+{
+  // The scene's peaks and the hammer's momentum rate come from its history rows; a
+  // checkpoint keeps what the rows have seen, so a run resumed from step 200 of 246
+  // writes the same history and the same peaks as the run without the break.
+  std::ostringstream quiet;
+  const std::string prm = lme_mpm_test::scene("drop_weight.prm");
+  std::map<std::string, double> results[2];
+  std::string dirs[2];
+  for (int resume : {0, 1})
+  {
+    dirs[resume] =
+        lme_mpm_test::scratch(resume ? "drop_weight_resume" : "drop_weight_full");
+    auto o = coarse();
+    o.push_back("Time/End time=1e-4");
+    o.push_back("Checkpoint/Every steps=100");
+    o.push_back("Output/Directory=" + dirs[resume]);
+    o.push_back("Output/Verbosity=0");
+    results[resume] = lme_mpm::run_parameter_file(prm, o, quiet);
+    if (resume)
+      results[resume] = lme_mpm::run_parameter_file(prm, o, quiet, dirs[resume]);
+  }
+  for (const std::string key : {"peak_impact_force", "time_of_peak_impact_force",
+                                "peak_reaction_force", "time_of_peak_reaction_force"})
+    EXPECT_EQ(results[0].at(key), results[1].at(key)) << key;
+  EXPECT_EQ(lme_mpm_test::file_text(dirs[0] + "/history.csv"),
+            lme_mpm_test::file_text(dirs[1] + "/history.csv"));
 }
 
 TEST(DropWeight, BadInputNamesTheEntry)

@@ -242,6 +242,12 @@ public:
     results["time_of_first_contact"]       = first_contact;
   }
 
+  void serialize(Archive &ar) override
+  {
+    ar(last_time, last_momentum, first_contact, peak_impact, time_of_peak_impact,
+       peak_reaction, time_of_peak_reaction);
+  }
+
 private:
   unsigned int n_bodies;
   double length = 0.42, depth = 0.1, width = 0.1, span = 0.3, support = 0.01;
@@ -250,8 +256,7 @@ private:
   double velocity = 2.64, cx = 0.23, cy = 0.025;
   bool notch_crack = true;
   std::string beam, hammer, left, right;
-  // What the history rows have seen (the rows are written in order; a resumed run
-  // starts them again from its first row).
+  // What the history rows have seen, in order (kept in checkpoints).
   mutable double last_time = 0, last_momentum = 0, first_contact = -1;
   mutable double peak_impact = 0, time_of_peak_impact = 0;
   mutable double peak_reaction = 0, time_of_peak_reaction = 0;

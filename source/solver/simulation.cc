@@ -489,6 +489,7 @@ void Simulation<dim>::serialize(Archive &ar)
     resumed_history_size = history_size;
   constraints.serialize(ar);
   contact.serialize(ar);
+  scene->serialize(ar);
   auto particle_series = particle_output->series();
   auto grid_series     = grid_output->series();
   ar(particle_series, grid_series);

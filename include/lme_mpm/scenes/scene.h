@@ -3,6 +3,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <lme_mpm/base/archive.h>
 #include <lme_mpm/base/registry.h>
 #include <lme_mpm/particles/particle_store.h>
 #include <lme_mpm/solver/run_parameters.h>
@@ -72,6 +73,10 @@ public:
    * specimen has failed, as a testing machine does). The default never stops early.
    */
   virtual std::string finished(const SceneState<dim> &) const { return {}; }
+  /// Saves or loads what the scene has accumulated over the run (peaks it tracks in
+  /// its history rows), so that a resumed run reports the same as an uninterrupted
+  /// one. The default has nothing to keep.
+  virtual void serialize(Archive &) {}
   /// Adds the scene's results to summary.json.
   virtual void add_results(const SceneState<dim> &, std::map<std::string, double> &) const
   {
