@@ -170,6 +170,7 @@ ParticleGenerator<dim>::fill(ParameterHandler &prm, const unsigned int n_bodies,
                                     ? static_cast<const Quadrature<1> &>(uniform_rule)
                                     : static_cast<const Quadrature<1> &>(gauss_rule);
     const std::size_t before  = store.size();
+    body.cells.assign(grid.n_cells(), 0);
     {
       // At most this many particles, before any is allocated (about 600 bytes each
       // in 2D and 900 in 3D with their connectivity, measured on linear functions).
@@ -216,6 +217,7 @@ ParticleGenerator<dim>::fill(ParameterHandler &prm, const unsigned int n_bodies,
                                             "and the material's Density) must be "
                                             "finite and positive"));
                 const std::size_t p = store.add(x, rho * volume, volume, material, b);
+                body.cells[grid.cell_index(ijk)] = 1;
                 for (unsigned int d = 0; d < dim; ++d)
                 {
                   store.velocity[p][d] = velocity.value(x, d);

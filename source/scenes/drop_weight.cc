@@ -2,7 +2,6 @@
 #include <lme_mpm/scenes/scene_tools.h>
 
 #include <cmath>
-#include <limits>
 
 namespace lme_mpm
 {

@@ -143,24 +143,14 @@ void Simulation<dim>::setup_particles(ParameterHandler &prm,
   const auto bodies = ParticleGenerator<dim>::fill(
       prm, counts.bodies, background, densities, parameters.thickness, store);
   const double h_min = background.min_spacing();
-  // The cells each body starts in: only those bound its neighbourhoods.
-  std::vector<std::vector<std::uint8_t>> occupied(
-      bodies.size(), std::vector<std::uint8_t>(background.n_cells(), 0));
-  for (std::size_t p = 0; p < store.size(); ++p)
+  for (const auto &body : bodies)
   {
-    std::array<unsigned int, dim> ijk;
-    if (background.locate(store.position[p], ijk))
-      occupied[store.body_id[p]][background.cell_index(ijk)] = 1;
-  }
-  for (unsigned int b = 0; b < bodies.size(); ++b)
-  {
-    const auto &body = bodies[b];
     particle_spacing = std::min(particle_spacing, h_min / body.particles_per_cell);
+    // Only the cells the body starts in bound its neighbourhoods.
     fracture.check_neighbourhood(body.material, body.particles_per_cell, body.section,
-                                 &occupied[b]);
+                                 &body.cells);
     for (const unsigned int m : body.zone_materials)
-      fracture.check_neighbourhood(m, body.particles_per_cell, body.section,
-                                   &occupied[b]);
+      fracture.check_neighbourhood(m, body.particles_per_cell, body.section, &body.cells);
   }
   // The time step comes from the wave speed; the motion the input starts must not
   // carry a particle half a cell in one step either (the run guard would stop it at

@@ -6,6 +6,7 @@
 #include <lme_mpm/grid/background_grid.h>
 #include <lme_mpm/particles/particle_store.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,8 @@ struct BodyPlacement
   unsigned int particles_per_cell = 2; ///< per cell direction
   /// 0-based materials of the body's "Material zones"
   std::vector<unsigned int> zone_materials;
+  /// Per grid cell: 1 where the body placed particles (their lengths follow it)
+  std::vector<std::uint8_t> cells;
 };
 
 /**
