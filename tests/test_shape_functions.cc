@@ -6,6 +6,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <lme_mpm/base/format.h>
+#include <lme_mpm/shape_functions/crack_band.h>
 #include <lme_mpm/shape_functions/shape_function.h>
 
 #include <gtest/gtest.h>
@@ -1233,4 +1234,48 @@ TEST(ShapeFunctions, DISABLED_LmeTiming)
   time_lme<2>(*g2, 0.01, 100000, "2D gamma 1.8, 100k particles");
   auto g3 = uniform_grid<3>(0.02, 30);
   time_lme<3>(*g3, 0.02, 20000, "3D gamma 1.8, 20k particles");
+}
+
+TEST(ShapeFunctions, CrackBandFollowsTheStepResponse)
+{
+  // A nodal jump strains particle columns by the functions' step response g; the band
+  // width is 1 / (h max g) and the reach how far from the most strained columns g stays
+  // above 1 % of its peak. Exact values at two Gauss points per cell (offsets
+  // 1/2 -+ 1/(2 sqrt 3)) and at two midpoints (1/4, 3/4): linear g = 1/h on its cell;
+  // cubic B-splines: g is the quadratic B-spline B2 about the jump's cell centre,
+  // B2(t) = 3/4 - t^2, (3/2 - |t|)^2 / 2; uGIMP (particle half the cell): the share
+  // of the particle's domain inside the cell over its width. LME: an independent
+  // Newton solve of the max-ent functions on the same lattice (no cut-off).
+  const double h = 0.01, s3 = 1 / std::sqrt(3.0);
+  const auto grid                 = uniform_grid<2>(h, 12);
+  const std::vector<double> gauss = {0.5 - 0.5 * s3, 0.5 + 0.5 * s3}, half = {0.5, 0.5},
+                            mid = {0.25, 0.75};
+  const double thickness        = 0.02;
+  const auto band = [&](const std::string &type, const std::vector<double> &offsets,
+                        const Settings &settings = {})
+  {
+    const auto sf = make<2>(type, *grid, settings, thickness);
+    return crack_band<2>(*sf, *grid, offsets, half, thickness);
+  };
+  const auto linear = band("linear", gauss);
+  EXPECT_NEAR(linear.width_cells, 1.0, 1e-12);
+  EXPECT_EQ(linear.reach_cells, 0.0);
+  EXPECT_NEAR(band("linear", mid).width_cells, 1.0, 1e-12);
+
+  const auto bspline = band("bspline", gauss);
+  EXPECT_NEAR(bspline.width_cells, 1 / (0.75 - 1.0 / 12), 1e-10); // 1.5
+  EXPECT_NEAR(bspline.reach_cells, 1.0, 1e-10); // B2 at 1.29: 3.3 % of the peak
+  EXPECT_NEAR(band("bspline", mid).width_cells, 1 / 0.6875, 1e-10);
+
+  const auto ugimp = band("ugimp", gauss);
+  EXPECT_NEAR(ugimp.width_cells, 1 / (1.5 - s3), 1e-10); // 1.0839
+  // The neighbouring cell's nearer column (at -(1/2 - 1/(2 sqrt 3)) h) keeps 7.7 %.
+  EXPECT_NEAR(ugimp.reach_cells, 1 - s3, 1e-10);
+
+  const auto lme18 = band("lme", gauss, {{"LME gamma", "1.8"}});
+  EXPECT_NEAR(lme18.width_cells, 1.32046, 1e-3);
+  EXPECT_NEAR(lme18.reach_cells, 1.0, 1e-10); // 2.8 % one cell on, 0.08 % two
+  const auto lme35 = band("lme", gauss, {{"LME gamma", "3.5"}});
+  EXPECT_NEAR(lme35.width_cells, 1.01936, 1e-3);
+  EXPECT_NEAR(lme35.reach_cells, 1 - s3, 1e-10); // 1.3 % there, 0.07 % one cell on
 }

@@ -1,3 +1,5 @@
+#include <deal.II/base/symmetric_tensor.h>
+
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/base/tensor_tools.h>
 #include <lme_mpm/fracture/fracture_model.h>
@@ -36,9 +38,11 @@ public:
                       "value (linear 2 G_F/f_t, bilinear 3.6 G_F/f_t).");
     prm.declare_entry("Band width", "0", Patterns::Double(0),
                       "h_eps (m), the width the crack opening is spread over; 0 ties it "
-                      "to the local grid spacing h (the shortest side of the particle's "
-                      "cell at t = 0; crack-band regularisation: a crack localises in "
-                      "one cell with linear shape functions).");
+                      "to the band a crack localises in on the grid (crack-band "
+                      "regularisation): the local grid spacing h (the shortest side of "
+                      "the particle's cell at t = 0) times the shape functions' band in "
+                      "cells, 1 for linear functions and wider for smoother ones, "
+                      "measured from the functions at the start (doc/theory.md).");
     prm.declare_entry("Damage rule", "crack band",
                       Patterns::Selection("crack band|paper"),
                       "'crack band': the damage makes the particle's max principal "
@@ -122,7 +126,7 @@ public:
         }
         continue;
       }
-      const double h             = band_width > 0 ? band_width : h_p;
+      const double h = band_width > 0 ? band_width : F.band_cells_of(P.body_id[p]) * h_p;
       const double strain_beyond = eps_I - P.onset_strain[p];
       double chi_new             = 0;
       if (paper_rule)
@@ -137,13 +141,16 @@ public:
         const double M = s0 / P.onset_strain[p];
         if (1 / h <= s0 * r * law->max_slope() / M)
         {
-          chi_new = 1; // beyond the snap-back limit: breaks at once
+          chi_new            = 1; // beyond the snap-back limit: breaks at once
+          P.crack_opening[p] = 1;
           ++snapped;
         }
         else
         {
           const double w_end = w_c / r;
-          const double w     = opening(strain_beyond, h, M, s0, r, w_end);
+          const double own   = opening(strain_beyond, h, M, s0, r, w_end) / w_end;
+          P.crack_opening[p] = own;
+          const double w     = band_opening(P, nb, F, p, own, h_p) * w_end;
           const double s     = s0 * law->traction_ratio(r * w);
           chi_new            = w >= w_end ? 1.0 : (sig_I > s ? 1 - s / sig_I : 0.0);
         }
@@ -170,6 +177,43 @@ public:
   }
 
 private:
+  /**
+   * The opening of the band particle @p p lies in, as a fraction of the critical
+   * opening: the largest of its own (@p own) and those of the softening particles
+   * across the band from it, on the line through it along its max principal strain
+   * (within a quarter of its cell size @p h_p of that line) and no farther than the
+   * shape functions' reach (crack_band()). Smooth functions spread a crack's jump over
+   * particles up to two cells from it, each straining by a share of the jump; with
+   * its own opening alone each would go on carrying stress across a band whose middle
+   * has failed (stress locking) and dissipate more as the crack keeps opening. With
+   * the band's opening they lose their traction together, once. Particles beyond the
+   * reach do not share it, so the band still localises; particles along the crack
+   * are off the line, so a crack does not run ahead of its tip.
+   */
+  double band_opening(const ParticleStore<dim> &P, const Neighbourhood<dim> &nb,
+                      const FractureFields &F, const std::size_t p, const double own,
+                      const double h_p) const
+  {
+    const double reach = F.band_reach_of(P.body_id[p]) * h_p;
+    if (reach <= 0 || own >= 1 || !nb.has_row(p))
+      return own;
+    // The reach is a distance between particle positions at t = 0; a tenth of a cell
+    // lets particles that have moved a little still count.
+    const double along_max = reach + 0.1 * h_p, off2 = 0.0625 * h_p * h_p;
+    const Tensor<1, dim> n = eigenvectors(P.strain[p])[0].second;
+    double band            = own;
+    for (auto q = nb.begin(p); q != nb.end(p); ++q)
+    {
+      if (F.crack_opening[*q] <= band)
+        continue;
+      const Tensor<1, dim> d = P.position[*q] - P.position[p];
+      const double along     = d * n;
+      if (std::abs(along) <= along_max && d.norm_square() - along * along <= off2)
+        band = std::min(1.0, F.crack_opening[*q]);
+    }
+    return band;
+  }
+
   /**
    * Crack opening w for a band strain beyond onset: the band strain is the elastic
    * change of the cohesive stress plus the opening spread over h,

@@ -5,6 +5,7 @@
 #include <lme_mpm/base/tensor_tools.h>
 #include <lme_mpm/fracture/fracture_coupling.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -150,6 +151,7 @@ void FractureCoupling<dim>::prepare(const ParticleStore<dim> &store)
     }
   fields.max_principal_stress.resize(n);
   fields.energy_density.resize(n);
+  fields.crack_opening.resize(n);
   seeds.resize(n);
   prepared_size = n;
 }
@@ -171,10 +173,15 @@ void FractureCoupling<dim>::take_snapshot(const ParticleStore<dim> &store,
         alive ? 0.5 * (1 - store.damage[p]) * (store.stress[p] * store.strain[p]) : 0.0;
     fields.max_principal_stress[p] = s;
     fields.energy_density[p]       = w;
-    // Only alive particles of a material with a model read their row.
-    const bool reads = alive && models[store.material_id[p]] != nullptr;
-    seeds[p] = (s > stress_bound || w > energy_bound ? Neighbourhood<dim>::seed : 0) |
-               (reads ? Neighbourhood<dim>::takes_row : 0);
+    fields.crack_opening[p]        = store.crack_opening[p];
+    // Only alive particles of a material with a model read their row; a softening
+    // particle reads it every step (its band shares their openings).
+    const bool reads     = alive && models[store.material_id[p]] != nullptr;
+    const bool softening = alive && store.onset_strain[p] != 0;
+    seeds[p] =
+        (s > stress_bound || w > energy_bound || softening ? Neighbourhood<dim>::seed
+                                                           : 0) |
+        (reads ? Neighbourhood<dim>::takes_row : 0);
   }
 }
 
@@ -230,6 +237,20 @@ void FractureCoupling<dim>::add_statistics(const ParticleStore<dim> &store,
   for (const auto f : store.failed)
     failed += f;
   results["failed_particles"] = failed;
+  // The crack band's width and reach in cells: one entry each if every body has the
+  // same, else one per body.
+  for (const auto &[name, values] :
+       {std::make_pair(std::string("crack_band_cells"), &fields.band_cells),
+        std::make_pair(std::string("crack_band_reach_cells"), &fields.band_reach)})
+  {
+    const auto &v = *values;
+    if (!v.empty() &&
+        std::all_of(v.begin(), v.end(), [&](double b) { return b == v[0]; }))
+      results[name] = v[0];
+    else
+      for (std::size_t b = 0; b < v.size(); ++b)
+        results[name + "_body_" + std::to_string(b + 1)] = v[b];
+  }
   // How much of the neighbourhood work the triggers left: 1 = every particle, every
   // step.
   if (updates > 0 && store.size() > 0)

@@ -171,6 +171,13 @@ ParticleGenerator<dim>::fill(ParameterHandler &prm, const unsigned int n_bodies,
                                     : static_cast<const Quadrature<1> &>(gauss_rule);
     const std::size_t before  = store.size();
     body.cells.assign(grid.n_cells(), 0);
+    body.offsets.clear();
+    body.weights.clear();
+    for (unsigned int q = 0; q < rule.size(); ++q)
+    {
+      body.offsets.push_back(rule.point(q)[0]);
+      body.weights.push_back(rule.weight(q));
+    }
     {
       // At most this many particles, before any is allocated (about 600 bytes each
       // in 2D and 900 in 3D with their connectivity, measured on linear functions).

@@ -88,6 +88,16 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
   shape_function = ShapeFunctionRegistry<dim>::instance().create(
       parameters.shape_function, prm, sf_context);
   prm.leave_subsection();
+  if (fracture.active())
+  {
+    // A band width tied to the grid spans the band these functions spread a crack
+    // over, which depends on where the body's particles sit in their cells.
+    std::vector<double> width, reach;
+    for (const auto &band :
+         crack_bands(*shape_function, background, body_placements, parameters.thickness))
+      width.push_back(band.width_cells), reach.push_back(band.reach_cells);
+    fracture.set_crack_band(width, reach);
+  }
   transfer.nodes().layout.reinit(background.n_nodes());
   if (!cracks.empty())
   {
@@ -143,8 +153,10 @@ void Simulation<dim>::setup_particles(ParameterHandler &prm,
   const auto bodies = ParticleGenerator<dim>::fill(
       prm, counts.bodies, background, densities, parameters.thickness, store);
   const double h_min = background.min_spacing();
+  body_placements.clear();
   for (const auto &body : bodies)
   {
+    body_placements.emplace_back(body.offsets, body.weights);
     particle_spacing = std::min(particle_spacing, h_min / body.particles_per_cell);
     // Only the cells the body starts in bound its neighbourhoods.
     fracture.check_neighbourhood(body.material, body.particles_per_cell, body.section,

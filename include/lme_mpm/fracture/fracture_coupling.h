@@ -57,6 +57,18 @@ public:
                            const std::vector<std::uint8_t> *occupied = nullptr) const;
 
   /**
+   * The band a crack localises in, per body (crack_band() of the run's shape functions
+   * and the body's particle placement): its width and its reach, in cells; lengths
+   * tied to the grid are these times the particle's local spacing.
+   */
+  void set_crack_band(std::vector<double> width_cells, std::vector<double> reach_cells)
+  {
+    fields.band_cells = std::move(width_cells);
+    fields.band_reach = std::move(reach_cells);
+  }
+  const std::vector<double> &band_cells() const { return fields.band_cells; }
+
+  /**
    * Sizes the snapshot for @p particles; call before take_snapshot() in each step
    * (cheap after the first call).
    */

@@ -23,10 +23,27 @@ struct FractureFields
   /// at t = 0 (fixed, so a particle keeps its lengths as it moves). Empty on a uniform
   /// grid, where every particle's h is FractureContext::grid_spacing.
   std::vector<double> spacing;
+  /// Per body: the width, in cells, of the band a crack localises in with the run's
+  /// shape functions and that body's particle placement (crack_band()); a band width
+  /// tied to the grid is this times the particle's spacing. Empty: 1 cell.
+  std::vector<double> band_cells;
+  /// Per body: how far, in cells, a crack's jump strains particles beside the most
+  /// strained ones (crack_band()). Empty: 0.
+  std::vector<double> band_reach;
+  /// ParticleStore::crack_opening, kept once failed: the band's other particles read it
+  std::vector<double> crack_opening;
 
   double spacing_of(const std::size_t p, const double uniform_spacing) const
   {
     return spacing.empty() ? uniform_spacing : spacing[p];
+  }
+  double band_cells_of(const unsigned int body) const
+  {
+    return body < band_cells.size() ? band_cells[body] : 1.0;
+  }
+  double band_reach_of(const unsigned int body) const
+  {
+    return body < band_reach.size() ? band_reach[body] : 0.0;
   }
 };
 

@@ -22,6 +22,10 @@ struct BodyPlacement
   std::vector<unsigned int> zone_materials;
   /// Per grid cell: 1 where the body placed particles (their lengths follow it)
   std::vector<std::uint8_t> cells;
+  /// Where the particles sit in a cell along each direction (fractions of the cell)
+  std::vector<double> offsets;
+  /// Their volume's share of the cell along each direction (sums to 1)
+  std::vector<double> weights;
 };
 
 /**

@@ -68,6 +68,9 @@ public:
   std::vector<double> damage;       ///< chi in [0, 1]
   std::vector<double> onset_strain; ///< principal strain at softening onset
   std::vector<double> onset_stress; ///< own max principal stress at onset
+  /// Crack opening from the particle's own strain, as a fraction of its law's
+  /// critical opening (eigensoftening's band shares it)
+  std::vector<double> crack_opening;
   std::vector<double> dissipated;   ///< fracture energy dissipated so far (J)
   std::vector<std::uint8_t> failed; ///< 1 once fully failed (no stress)
 
@@ -78,8 +81,8 @@ public:
     f(position), f(reference_position), f(velocity), f(acceleration), f(mass), f(volume),
         f(initial_volume), f(density), f(strain), f(strain_increment), f(stress), f(id),
         f(material_id), f(body_id), f(cell), f(lme_lambda), f(lme_position),
-        f(lme_lambda_rate), f(damage), f(onset_strain), f(onset_stress), f(dissipated),
-        f(failed);
+        f(lme_lambda_rate), f(damage), f(onset_strain), f(onset_stress), f(crack_opening),
+        f(dissipated), f(failed);
   }
 
 private:

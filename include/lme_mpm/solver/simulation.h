@@ -23,6 +23,7 @@
 #include <lme_mpm/output/run_summary.h>
 #include <lme_mpm/particles/particle_store.h>
 #include <lme_mpm/scenes/scene.h>
+#include <lme_mpm/shape_functions/crack_band.h>
 #include <lme_mpm/shape_functions/shape_function.h>
 #include <lme_mpm/solver/crack_face_contact.h>
 #include <lme_mpm/solver/explicit_newmark.h>
@@ -157,6 +158,9 @@ private:
   // Farthest a support reaches (for the cracks' second fields) and the smallest
   // particle spacing of the bodies (for their growth).
   double crack_reach = 0, particle_spacing = std::numeric_limits<double>::max();
+  /// Per body: the particles' positions and volume shares within a cell (for the
+  /// crack band's width)
+  std::vector<CellPlacement> body_placements;
 
   EnergyBalance<dim> energy;
   PeakForce<dim> peak_force;
