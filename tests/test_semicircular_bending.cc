@@ -62,8 +62,8 @@ TEST(SemicircularBending, VerticalNotchCrackRunsUpTheSymmetryLine)
   EXPECT_NEAR(r.at("peak_contact_force_left"), r.at("peak_contact_force_right"),
               0.01 * r.at("peak_contact_force_right"));
   // The peak: Molinos et al. simulated 176 N at 2 mm/s (reference/README.md section
-  // 4); the scene gives 173 N at that rate, 176 N at this one. Without the notch crack
-  // the grid ties the notch faces together and the peak is 429 N.
+  // 4); the scene gave 173 N at that rate and gives 175 N at this one. Without the notch
+  // crack the grid ties the notch faces together and the peak is 429 N.
   EXPECT_NEAR(r.at("peak_force"), 176, 0.1 * 176);
   // The crack path: nearly every failed particle started within 6 mm (four cells) of
   // the notch's line x = 63 mm and above the notch tip's level (y = 15 + 16.6 mm) less
