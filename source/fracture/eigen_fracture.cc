@@ -200,12 +200,15 @@ private:
     // The reach is a distance between particle positions at t = 0; a tenth of a cell
     // lets particles that have moved a little still count.
     const double along_max = reach + 0.1 * h_p, off2 = 0.0625 * h_p * h_p;
-    const Tensor<1, dim> n = eigenvectors(P.strain[p])[0].second;
-    double band            = own;
+    Tensor<1, dim> n;
+    bool have_normal = false;
+    double band      = own;
     for (auto q = nb.begin(p); q != nb.end(p); ++q)
     {
       if (F.crack_opening[*q] <= band)
         continue;
+      if (!have_normal) // only once a neighbour is more open than p
+        n = eigenvectors(P.strain[p])[0].second, have_normal = true;
       const Tensor<1, dim> d = P.position[*q] - P.position[p];
       const double along     = d * n;
       if (std::abs(along) <= along_max && d.norm_square() - along * along <= off2)

@@ -175,9 +175,9 @@ void FractureCoupling<dim>::take_snapshot(const ParticleStore<dim> &store,
     fields.energy_density[p]       = w;
     fields.crack_opening[p]        = store.crack_opening[p];
     // Only alive particles of a material with a model read their row; a softening
-    // particle reads it every step (its band shares their openings).
+    // particle reads it every step where its band shares their openings.
     const bool reads     = alive && models[store.material_id[p]] != nullptr;
-    const bool softening = alive && store.onset_strain[p] != 0;
+    const bool softening = shares_openings && alive && store.onset_strain[p] != 0;
     seeds[p] =
         (s > stress_bound || w > energy_bound || softening ? Neighbourhood<dim>::seed
                                                            : 0) |

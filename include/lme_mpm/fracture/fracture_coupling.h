@@ -10,6 +10,7 @@
 #include <lme_mpm/materials/material_set.h>
 #include <lme_mpm/particles/particle_store.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <map>
@@ -65,8 +66,9 @@ public:
   {
     fields.band_cells = std::move(width_cells);
     fields.band_reach = std::move(reach_cells);
+    shares_openings   = std::any_of(fields.band_reach.begin(), fields.band_reach.end(),
+                                    [](const double r) { return r > 0; });
   }
-  const std::vector<double> &band_cells() const { return fields.band_cells; }
 
   /**
    * Sizes the snapshot for @p particles; call before take_snapshot() in each step
@@ -110,6 +112,9 @@ private:
   double radius                           = 0; ///< of the neighbourhood search
   /// Without a model that gives no trigger: rows only around the seeds.
   bool seeded_rows = false;
+  /// A body's crack band reaches beyond its own cell: softening particles then read
+  /// their rows every step (the band shares its opening).
+  bool shares_openings = false;
   /// Threshold per field (FractureTrigger::Field), the lowest of the models'.
   std::array<double, 3> thresholds{};
   std::vector<std::uint8_t> seeds; ///< particles above a threshold
