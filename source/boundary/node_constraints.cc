@@ -154,7 +154,8 @@ void NodeConstraint<dim>::update_reaction(
                                               : mass[K] * acceleration[K][d];
     return ma - force[K][d];
   };
-  total_reaction = Tensor<1, dim>();
+  const Tensor<1, dim> old_reaction = total_reaction;
+  total_reaction                    = Tensor<1, dim>();
   Tensor<1, dim> mean_rate;
   for (unsigned int i = 0; i < node_list.size(); ++i)
   {
@@ -172,6 +173,7 @@ void NodeConstraint<dim>::update_reaction(
       }
   }
   mean_displacement += (dt / node_list.size()) * mean_rate;
+  total_impulse += (0.5 * dt) * (old_reaction + total_reaction);
 }
 
 template <int dim>

@@ -16,12 +16,19 @@ namespace scenes
  * apart), the supports' (zero) velocity, the hammer's initial velocity and its
  * material's density from the hammer's mass.
  *
- * History: impact_force (the contact force on the hammer, upwards, N, for the real
- * thickness), hammer_momentum_rate (the change of the hammer's momentum over the row's
- * interval divided by its length: the same force measured on the particles),
- * reaction_force (the upward forces of the supports on the beam, summed), cmod
- * (crack-mouth opening) and damage_total. Summary: the peaks of the impact and reaction
- * forces and their times from the first contact.
+ * With Contact/Type = multi-field the supports are fixed cylinders (prescribed
+ * bodies) and hammer, beam and supports meet through contact. With Contact/Type =
+ * none (the paper's single velocity field) hammer and beam share the grid's nodes and
+ * the supports are constrained node sets: the vertical velocity of the node column
+ * through each support's axis, from the beam's bottom face down, is held at zero.
+ *
+ * History: impact_force (the force on the hammer, upwards, N, for the real thickness:
+ * the contact force with contact, the hammer's momentum rate on a single field),
+ * hammer_momentum_rate and beam_momentum_rate (the change of the body's momentum over
+ * the row's interval divided by its length), reaction_force (the upward forces of the
+ * supports on the beam, summed, as means over the row's interval), cmod (crack-mouth
+ * opening) and damage_total. Summary: the peaks of the impact and reaction forces and
+ * their times from the first contact.
  */
 template <int dim>
 class DropWeight : public Scene<dim>
@@ -74,11 +81,15 @@ public:
     prm.declare_entry("Hammer", "hammer", Patterns::Anything(),
                       "Drop weight: the Body N/Name of the hammer.");
     prm.declare_entry("Supports", "left, right", Patterns::Anything(),
-                      "Drop weight: the Body N/Name of the supports at -x and +x.");
+                      "Drop weight: the names of the supports at -x and +x: Body N/Name "
+                      "of two bodies with Contact/Type = multi-field, Boundary "
+                      "conditions/Constraint N/Name of two node sets with "
+                      "Contact/Type = none.");
   }
 
   DropWeight(ParameterHandler &prm, const SceneContext<dim> &context)
-      : n_bodies(context.n_bodies)
+      : n_bodies(context.n_bodies), n_constraints(context.n_constraints),
+        single_field(!context.contact)
   {
     length              = prm.get_double("Beam length");
     depth               = prm.get_double("Beam depth");
@@ -147,12 +158,50 @@ public:
     for (const int side : {-1, 1})
     {
       const std::string &name = side < 0 ? left : right;
-      set_body_entry(
-          prm, n_bodies, name, "Shape",
-          cylinder_shape<dim>(cx + 0.5 * side * span, cy - support, support, width),
-          rect_default, "Scene/Supports");
-      set_body_entry(prm, n_bodies, name, "Prescribed velocity/Function expression",
-                     ramped_velocity<dim>(0, 0, 0), "", "Scene/Supports");
+      const double axis       = cx + 0.5 * side * span;
+      if (single_field)
+      {
+        bool is_body = true;
+        try
+        {
+          (void)find_body(prm, n_bodies, name, "Scene/Supports");
+        }
+        catch (const ExcBadInput &)
+        {
+          is_body = false;
+        }
+        AssertThrow(!is_body && n_constraints >= 2,
+                    ExcBadInput("Scene/Supports",
+                                "with Contact/Type = none the supports are node sets: "
+                                "give two Boundary conditions/Constraint N named '" +
+                                    left + "' and '" + right +
+                                    "' and no body of these names "
+                                    "(prm/drop_weight_single_field.prm)"));
+        // A knife edge under the face: the grid nodes within a quarter of the support
+        // radius of its axis (one column on the scene's grids), from the face down
+        // to where the cylinder would end.
+        const double a = 0.25 * support;
+        const std::string box =
+            dim == 2 ? number(axis - a) + ", " + number(cy - 2 * support) + ", " +
+                           number(axis + a) + ", " + number(cy + 1e-9 * depth)
+                     : number(axis - a) + ", " + number(cy - 2 * support) + ", 0, " +
+                           number(axis + a) + ", " + number(cy + 1e-9 * depth) + ", " +
+                           number(width);
+        const std::string section =
+            "Boundary conditions/" +
+            input::subsection_name("Constraint", find_constraint(prm, n_constraints, name,
+                                                                 "Scene/Supports"));
+        set_entry(prm, section + "/Box", box, "", "Scene/Supports");
+        set_entry(prm, section + "/Components", "y", "x", "Scene/Supports");
+      }
+      else
+      {
+        set_body_entry(prm, n_bodies, name, "Shape",
+                       cylinder_shape<dim>(axis, cy - support, support, width),
+                       rect_default, "Scene/Supports");
+        set_body_entry(prm, n_bodies, name, "Prescribed velocity/Function expression",
+                       ramped_velocity<dim>(0, 0, 0), "", "Scene/Supports");
+      }
     }
     const double top = cy + depth;
     set_body_entry(prm, n_bodies, hammer, "Shape",
@@ -177,16 +226,22 @@ public:
   {
     (void)body_index(state, beam, "Scene/Beam");
     (void)body_index(state, hammer, "Scene/Hammer");
-    (void)body_index(state, left, "Scene/Supports");
-    (void)body_index(state, right, "Scene/Supports");
-    AssertThrow(state.contact_forces != nullptr,
-                ExcBadInput("Contact/Type", "the drop-weight scene needs multi-field "
-                                            "contact (hammer, beam and supports)"));
+    if (single_field)
+    {
+      (void)constraint_named(state, left, "Scene/Supports");
+      (void)constraint_named(state, right, "Scene/Supports");
+    }
+    else
+    {
+      (void)body_index(state, left, "Scene/Supports");
+      (void)body_index(state, right, "Scene/Supports");
+    }
   }
 
   void write_history_header(std::ostream &out) const override
   {
-    out << ",impact_force,hammer_momentum_rate,reaction_force,cmod,damage_total";
+    out << ",impact_force,hammer_momentum_rate,beam_momentum_rate,reaction_force,cmod,"
+           "damage_total";
   }
 
   void write_history_row(std::ostream &out, const SceneState<dim> &state) const override
@@ -194,20 +249,35 @@ public:
     const ParticleStore<dim> &p = *state.particles;
     const unsigned int b        = body_index(state, beam, "Scene/Beam");
     const unsigned int h        = body_index(state, hammer, "Scene/Hammer");
-    const auto &force           = *state.contact_forces;
-    const double impact         = force[h][1];
-    // What the supports push the beam up with: minus the forces they receive.
-    const double reaction = -force[body_index(state, left, "Scene/Supports")][1] -
-                            force[body_index(state, right, "Scene/Supports")][1];
     // The hammer's momentum (for the real thickness in 2D: particle masses already
     // carry it).
-    double momentum = 0;
+    double momentum = 0, beam_momentum = 0;
     for (std::size_t i = 0; i < p.size(); ++i)
       if (p.body_id[i] == h)
         momentum += p.mass[i] * p.velocity[i][1];
-    double rate = 0;
-    if (state.time > last_time)
-      rate = (momentum - last_momentum) / (state.time - last_time);
+      else if (p.body_id[i] == b)
+        beam_momentum += p.mass[i] * p.velocity[i][1];
+    const double interval = state.time - last_time;
+    const double rate     = interval > 0 ? (momentum - last_momentum) / interval : 0.0;
+    const double beam_rate =
+        interval > 0 ? (beam_momentum - last_beam_momentum) / interval : 0.0;
+    double impact = rate, reaction = 0, support_impulse = 0;
+    if (single_field)
+    {
+      // The constraints' impulses over the row's interval: their mean reaction.
+      support_impulse = constraint_named(state, left, "Scene/Supports").impulse()[1] +
+                        constraint_named(state, right, "Scene/Supports").impulse()[1];
+      if (interval > 0)
+        reaction = (support_impulse - last_support_impulse) / interval;
+    }
+    else
+    {
+      const auto &force = *state.contact_forces;
+      impact            = force[h][1];
+      // What the supports push the beam up with: minus the forces they receive.
+      reaction = -force[body_index(state, left, "Scene/Supports")][1] -
+                 force[body_index(state, right, "Scene/Supports")][1];
+    }
     // The crack mouth: material points on the bottom face 2 mm outside the notch.
     const double g = 0.5 * notch_width + 0.002, r = 0.0015;
     const double cmod = mean_displacement_near(p, b, Point<2>(cx + g, cy + r), r)[0] -
@@ -223,10 +293,12 @@ public:
       if (reaction > peak_reaction)
         peak_reaction = reaction, time_of_peak_reaction = state.time - first_contact;
     }
-    last_time     = state.time;
-    last_momentum = momentum;
-    out << "," << impact << "," << rate << "," << reaction << "," << cmod << ","
-        << damaged;
+    last_time            = state.time;
+    last_momentum        = momentum;
+    last_beam_momentum   = beam_momentum;
+    last_support_impulse = support_impulse;
+    out << "," << impact << "," << rate << "," << beam_rate << "," << reaction << ","
+        << cmod << "," << damaged;
   }
 
   void add_results(const SceneState<dim> &,
@@ -243,12 +315,13 @@ public:
 
   void serialize(Archive &ar) override
   {
-    ar(last_time, last_momentum, first_contact, peak_impact, time_of_peak_impact,
-       peak_reaction, time_of_peak_reaction);
+    ar(last_time, last_momentum, last_beam_momentum, last_support_impulse, first_contact,
+       peak_impact, time_of_peak_impact, peak_reaction, time_of_peak_reaction);
   }
 
 private:
-  unsigned int n_bodies;
+  unsigned int n_bodies, n_constraints;
+  bool single_field;
   double length = 0.42, depth = 0.1, width = 0.1, span = 0.3, support = 0.01;
   double notch_depth = 0.05, notch_width = 0.0025, overhang = 0.015;
   double hammer_width = 0.05, hammer_height = 0.05, hammer_mass = 120.6;
@@ -256,7 +329,9 @@ private:
   bool notch_crack = true;
   std::string beam, hammer, left, right;
   // What the history rows have seen, in order (kept in checkpoints).
-  mutable double last_time = 0, last_momentum = 0, first_contact = -1;
+  mutable double last_time = 0, last_momentum = 0, last_beam_momentum = 0;
+  mutable double last_support_impulse = 0;
+  mutable double first_contact        = -1;
   mutable double peak_impact = 0, time_of_peak_impact = 0;
   mutable double peak_reaction = 0, time_of_peak_reaction = 0;
 };
@@ -266,6 +341,7 @@ private:
 using lme_mpm::scenes::DropWeight;
 LME_MPM_REGISTER_SCENE(DropWeight, "drop weight",
                        "a notched beam on two supports struck at mid-span by a hammer "
-                       "(Scene/Impact velocity); writes the bodies' shapes, the hammer's "
+                       "(Scene/Impact velocity), in contact or on one velocity field; "
+                       "writes the bodies' shapes, the hammer's "
                        "velocity and density, reports the peak impact and reaction "
                        "forces and their times.")

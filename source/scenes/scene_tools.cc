@@ -81,6 +81,40 @@ unsigned int body_index(const SceneState<dim> &state, const std::string &name,
   return 0;
 }
 
+unsigned int find_constraint(ParameterHandler &prm, const unsigned int n_constraints,
+                             const std::string &name, const std::string &owner)
+{
+  prm.enter_subsection("Boundary conditions");
+  unsigned int found = n_constraints;
+  for (unsigned int c = 0; c < n_constraints && found == n_constraints; ++c)
+  {
+    prm.enter_subsection(input::subsection_name("Constraint", c));
+    if (input::trim(prm.get("Name")) == name)
+      found = c;
+    prm.leave_subsection();
+  }
+  prm.leave_subsection();
+  AssertThrow(found < n_constraints,
+              ExcBadInput(owner, "no Boundary conditions/Constraint N/Name is '" + name +
+                                     "' (Boundary conditions/Number of constraints = " +
+                                     std::to_string(n_constraints) + ")"));
+  return found;
+}
+
+template <int dim>
+const NodeConstraint<dim> &constraint_named(const SceneState<dim> &state,
+                                            const std::string &name,
+                                            const std::string &entry)
+{
+  const NodeConstraints<dim> &sets = *state.constraints;
+  for (unsigned int c = 0; c < sets.size(); ++c)
+    if (sets[c].name() == name)
+      return sets[c];
+  AssertThrow(false, ExcBadInput(entry, "no Boundary conditions/Constraint N/Name is '" +
+                                            name + "'"));
+  return sets[0];
+}
+
 template <int dim>
 Tensor<1, dim> mean_displacement_near(const ParticleStore<dim> &p,
                                       const unsigned int body, const Point<2> &centre,
@@ -113,6 +147,10 @@ template unsigned int body_index(const SceneState<2> &, const std::string &,
                                  const std::string &);
 template unsigned int body_index(const SceneState<3> &, const std::string &,
                                  const std::string &);
+template const NodeConstraint<2> &
+constraint_named(const SceneState<2> &, const std::string &, const std::string &);
+template const NodeConstraint<3> &
+constraint_named(const SceneState<3> &, const std::string &, const std::string &);
 template Tensor<1, 2> mean_displacement_near(const ParticleStore<2> &, unsigned int,
                                              const Point<2> &, double);
 template Tensor<1, 3> mean_displacement_near(const ParticleStore<3> &, unsigned int,

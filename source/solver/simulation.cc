@@ -55,9 +55,13 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
   parameters.parse_parameters(prm);
   {
     SceneContext<dim> context;
-    context.thickness = parameters.thickness;
-    context.n_bodies  = counts.bodies;
-    scene             = create_scene<dim>(prm, context);
+    context.thickness     = parameters.thickness;
+    context.n_bodies      = counts.bodies;
+    context.n_constraints = counts.constraints;
+    prm.enter_subsection("Contact");
+    context.contact = prm.get("Type") != "none";
+    prm.leave_subsection();
+    scene = create_scene<dim>(prm, context);
     scene->set_entries(prm);
     scene->adjust(parameters);
   }
@@ -258,9 +262,10 @@ template <int dim>
 SceneState<dim> Simulation<dim>::scene_state() const
 {
   SceneState<dim> state;
-  state.particles  = &store;
-  state.body_names = &contact.body_names();
-  state.run        = &parameters;
+  state.particles   = &store;
+  state.body_names  = &contact.body_names();
+  state.run         = &parameters;
+  state.constraints = &constraints;
   if (contact.active())
   {
     state.contact_forces      = &contact.mean_forces();

@@ -78,11 +78,19 @@ public:
   const Tensor<1, dim> &reaction() const { return total_reaction; }
   /// Mean imposed displacement of the set (m).
   const Tensor<1, dim> &displacement() const { return mean_displacement; }
+  /**
+   * Impulse the constraint has applied since the start (N s): the step's reactions
+   * at its ends averaged, as the central-difference update gives the particles the
+   * mean of the old and new accelerations. Its change over an interval divided by
+   * the interval is the mean reaction there (the reaction of a single step chatters
+   * as particles cross cells).
+   */
+  const Tensor<1, dim> &impulse() const { return total_impulse; }
 
   template <class Archive>
   void serialize(Archive &ar)
   {
-    ar(total_reaction, mean_displacement, node_reaction);
+    ar(total_reaction, mean_displacement, node_reaction, total_impulse);
   }
 
 private:
@@ -94,7 +102,7 @@ private:
   std::vector<Point<dim>> points;
   bool constant = false;
   Tensor<1, dim> constant_value;
-  Tensor<1, dim> total_reaction, mean_displacement;
+  Tensor<1, dim> total_reaction, mean_displacement, total_impulse;
   /// Reaction on each node of the set at the end of the last step (for the work).
   std::vector<Tensor<1, dim>> node_reaction;
 };

@@ -5,6 +5,7 @@
 
 #include <lme_mpm/base/archive.h>
 #include <lme_mpm/base/registry.h>
+#include <lme_mpm/boundary/node_constraints.h>
 #include <lme_mpm/particles/particle_store.h>
 #include <lme_mpm/solver/run_parameters.h>
 
@@ -22,6 +23,10 @@ struct SceneContext
   double thickness = 1;
   /// Problem/Number of bodies.
   unsigned int n_bodies = 1;
+  /// Boundary conditions/Number of constraints.
+  unsigned int n_constraints = 0;
+  /// Whether bodies get their own fields (Contact/Type is not 'none').
+  bool contact = false;
 };
 
 /// What a scene sees at the end of a run.
@@ -37,7 +42,9 @@ struct SceneState
   /// row, and the largest of these means so far (empty without contact).
   const std::vector<Tensor<1, dim>> *contact_forces = nullptr;
   const std::vector<double> *peak_contact_forces    = nullptr;
-  double time                                       = 0;
+  /// The constrained node sets, with their reactions and impulses.
+  const NodeConstraints<dim> *constraints = nullptr;
+  double time                             = 0;
 };
 
 /**

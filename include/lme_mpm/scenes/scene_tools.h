@@ -45,6 +45,18 @@ double damaged_volume(const ParticleStore<dim> &particles, unsigned int body);
 template <int dim>
 unsigned int body_index(const SceneState<dim> &state, const std::string &name,
                         const std::string &entry);
+/**
+ * The "Boundary conditions/Constraint N" whose "Name" is @p name among the first
+ * @p n_constraints (read from @p prm, at its top level); throws ExcBadInput naming
+ * @p owner if none is.
+ */
+unsigned int find_constraint(ParameterHandler &prm, unsigned int n_constraints,
+                             const std::string &name, const std::string &owner);
+/// The constrained node set named @p name; throws ExcBadInput naming @p entry if none.
+template <int dim>
+const NodeConstraint<dim> &constraint_named(const SceneState<dim> &state,
+                                            const std::string &name,
+                                            const std::string &entry);
 
 /// The mass-weighted mean displacement of the particles of @p body whose reference
 /// position lies within @p radius of @p centre in the x-y plane (0 if none).
