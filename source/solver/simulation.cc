@@ -340,7 +340,7 @@ void Simulation<dim>::predict_displacement_rates(const double t_half)
   // Contact between bodies last: constraints still win on their nodes.
   {
     StageTimer::Scope contact_scope(stages, stage.contact);
-    contact.on_rates(mass_tolerance);
+    contact.on_rates(mass_tolerance, dt);
   }
   if (contact.n_contact_pairs() > 0)
     constraints.impose_rates(nodes.rate, nodes.layout, t_half);

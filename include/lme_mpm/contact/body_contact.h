@@ -5,6 +5,7 @@
 #include <deal.II/base/parsed_function.h>
 #include <deal.II/base/tensor.h>
 
+#include <lme_mpm/contact/projected_exchange.h>
 #include <lme_mpm/grid/background_grid.h>
 #include <lme_mpm/grid/field_layout.h>
 #include <lme_mpm/particles/particle_store.h>
@@ -53,7 +54,7 @@ class BodyContact
 {
 public:
   BodyContact(const BackgroundGrid<dim> &grid, GridTransfer<dim> &transfer,
-              const ParticleStore<dim> &particles);
+              ParticleStore<dim> &particles);
 
   /// Declares "Contact" and each "Body N/Name" and "Body N/Prescribed velocity".
   static void declare_parameters(ParameterHandler &prm, unsigned int n_bodies);
@@ -99,11 +100,17 @@ public:
                                        double h) const;
 
   /// Finds the pairs of fields in contact and exchanges momentum on the rates.
-  void on_rates(double mass_tolerance);
   /**
-   * The exchange on the accelerations, for the corrector's trial end-of-step velocity.
-   * Records the contact force on every body; returns the work the prescribed bodies
-   * did on the others over the step.
+   * Finds the pairs in contact and exchanges momentum on the displacement rates: with
+   * 'Exchange = projected' the step's whole exchange (the particles' velocities change
+   * and the rates follow them; the force is recorded), with 'nodal' the rates alone.
+   */
+  void on_rates(double mass_tolerance, double dt);
+  /**
+   * 'nodal': the exchange on the accelerations, for the corrector's trial end-of-step
+   * velocity. Records the contact force on every body ('projected': the force of the
+   * exchange on the rates); returns the work the prescribed bodies did on the others
+   * over the step.
    */
   double on_accelerations(const ExplicitNewmark &newmark, double dt);
 
@@ -177,9 +184,18 @@ private:
   void exchange(std::vector<Tensor<1, dim>> &x, const Velocity &velocity, double scale,
                 bool rate_stage, const Record &record) const;
 
+  /// Pairs in contact at the shared nodes, from this step's rates.
+  void find_pairs(double mass_tolerance);
+
   const BackgroundGrid<dim> &grid;
   GridTransfer<dim> &transfer;
-  const ParticleStore<dim> &particles;
+  ParticleStore<dim> &particles;
+  bool projected      = true;
+  unsigned int sweeps = 8;
+  double rate_work    = 0;
+  ProjectedExchange<dim> projected_exchange;
+  std::vector<ExchangePair<dim>> exchange_pairs;
+  std::vector<Tensor<1, dim>> pair_impulse;
 
   bool multi_field         = false;
   unsigned int normal_rule = 1; // larger gradient, larger volume, difference

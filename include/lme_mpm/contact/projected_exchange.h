@@ -1,0 +1,71 @@
+#ifndef LME_MPM_CONTACT_PROJECTED_EXCHANGE_H
+#define LME_MPM_CONTACT_PROJECTED_EXCHANGE_H
+
+#include <deal.II/base/tensor.h>
+
+#include <lme_mpm/particles/particle_store.h>
+#include <lme_mpm/solver/grid_transfer.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace lme_mpm
+{
+using namespace dealii;
+
+/// Two bodies' fields at a node in contact, as the exchange sees them.
+template <int dim>
+struct ExchangePair
+{
+  unsigned int a, b;     ///< fields
+  bool fixed_a, fixed_b; ///< prescribed sides: they do not give way
+  Tensor<1, dim> normal; ///< from a to b
+  double friction;       ///< Coulomb coefficient
+};
+
+/**
+ * The contact exchange as a velocity jump the particles carry (doc/contact.md,
+ * "Contact/Exchange = projected"). Each pair receives an impulse J (on a; -J on b),
+ * the particles of a field's body change velocity by sum_I N_Ip J_I / m_I over their
+ * pair fields, and the displacement rates become the projection of the particles'
+ * new velocities: the rates that move the particles and strain them are then the ones
+ * the particles carry, so that the work of the contact and the strain energy see the
+ * same motion. The impulses are found so that those projected rates no longer approach
+ * along the normal (Coulomb-limited tangentially): a projected Jacobi iteration in
+ * which a field's response to its own jump is the projection of a unit jump of every
+ * pair field (exact for a contact that moves as one, under-relaxed for one that
+ * varies from node to node). Momentum is exchanged pair by pair and conserved to
+ * round-off whatever the number of sweeps.
+ */
+template <int dim>
+class ProjectedExchange
+{
+public:
+  /**
+   * Finds every pair's impulse on a (@p impulse_on_a) in @p sweeps Jacobi sweeps and
+   * applies it: @p velocity of the particles flagged in @p touches (those with a node
+   * at a shared node) and the rates and momenta of every field they reach (the rates
+   * of fields above @p mass_tolerance, as the rates are projected).
+   */
+  void apply(const std::vector<ExchangePair<dim>> &pairs, GridTransfer<dim> &transfer,
+             const ParticleStore<dim> &particles,
+             const std::vector<std::uint8_t> &touches,
+             std::vector<Tensor<1, dim>> &velocity,
+             std::vector<Tensor<1, dim>> &impulse_on_a, unsigned int sweeps,
+             double mass_tolerance);
+
+private:
+  /// The particles' velocity changes for the current impulses and the momentum
+  /// change of every field they reach (its rate changes by that over its mass).
+  void respond(const std::vector<ExchangePair<dim>> &pairs, GridTransfer<dim> &transfer,
+               const ParticleStore<dim> &particles,
+               const std::vector<std::uint8_t> &touches,
+               const std::vector<Tensor<1, dim>> &impulse_on_a);
+
+  std::vector<Tensor<1, dim>> jump, response, delta, next;
+  std::vector<double> scale;
+  std::vector<std::uint8_t> in_pair;
+};
+} // namespace lme_mpm
+
+#endif
