@@ -2,7 +2,7 @@
 """A one-dimensional model of the multi-field contact exchange, for studying its energy
 gain (doc/contact.md, "A one-dimensional model of the gain").
 
-An elastic bar (E = rho = 1, length 1, so c = 1) falls at 0.1 onto a rigid body that
+An elastic bar (E = rho = 1, length 1, so c = 1) falls at --speed (0.1) onto a rigid body that
 fills x < 0, starting one cell above it, and rebounds. The grid, the explicit Newmark
 update (gamma = 1/2, particles carrying velocity and acceleration), the field masses
 and volumes, the detection (the two fields fill at least 0.9 of the node's length,
@@ -11,11 +11,12 @@ rebound over the initial one, its largest and smallest values over the run, and 
 bar's mean velocity at the end over the impact velocity.
 
 Exchanges (--variant):
-  lumped      the solver's: approaching rates stopped for the positions, the
+  lumped      Contact/Exchange = nodal: approaching rates stopped for the positions, the
               corrector's trial end-of-step velocity stopped through the accelerations
   jump        one exchange on the rates, carried by the particles, with the positions
               following the particles' projected rate after it; solved so that the
-              projected rate (consistent mass) stops approaching
+              projected rate (consistent mass) stops approaching: the solver's
+              Contact/Exchange = projected
   next-rate   no exchange on the rates; the corrector stops the particles' projected
               rate of the next predictor (consistent mass)
   hold        the node's rate and acceleration held at zero while it is pressed
@@ -165,12 +166,14 @@ def main():
     p.add_argument("--cells", type=int, nargs="+", default=[80],
                    help="cells over the bar's length")
     p.add_argument("--shape", default="bspline", choices=["bspline", "linear"])
+    p.add_argument("--speed", type=float, default=0.1,
+                   help="impact velocity over the bar's wave speed")
     args = p.parse_args()
     shape = quadratic_bspline if args.shape == "bspline" else linear
     for cells in args.cells:
         for cfl in args.cfl:
-            r = chain(cfl, cells) if args.variant == "chain" else bar(
-                args.variant, 1.0 / cells, cfl, shape)
+            r = chain(cfl, cells, v0=args.speed) if args.variant == "chain" else bar(
+                args.variant, 1.0 / cells, cfl, shape, v0=args.speed)
             print("%s %s h=1/%d cfl=%.2f: end %.4f max %.4f min %.4f rebound %.3f" %
                   (args.variant, args.shape, cells, cfl, *r))
             if args.variant != "chain":
