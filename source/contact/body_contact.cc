@@ -463,7 +463,6 @@ void BodyContact<dim>::on_rates(const double mass_tolerance, const double dt)
   for (const Pair &q : pairs)
     exchange_pairs.push_back({q.a, q.b, prescribed[q.body_a] != 0,
                               prescribed[q.body_b] != 0, q.normal, q.friction});
-  // The prescribed sides' rates before the jump (theirs do not change).
   projected_exchange.apply(exchange_pairs, transfer, particles, touches_shared,
                            particles.velocity, pair_impulse, sweeps, mass_tolerance);
   for (std::size_t i = 0; i < pairs.size(); ++i)
@@ -593,24 +592,26 @@ void BodyContact<dim>::find_pairs(const double mass_tolerance)
 template <int dim>
 double BodyContact<dim>::on_accelerations(const ExplicitNewmark &newmark, const double dt)
 {
-  if (projected)
-  {
-    // The exchange happened on the rates; the step only books its force.
-    impulse_time += dt;
-    for (unsigned int b = 0; b < n_bodies; ++b)
-      for (unsigned int d = 0; d < dim; ++d)
-        impulse[b * dim + d] += dt * contact_force[b][d];
-    const double work = rate_work;
-    rate_work         = 0;
-    return work;
-  }
+  // Every step counts towards the history row's mean force, with contact or not.
+  impulse_time += dt;
+  // The projected exchange happened on the rates; the step only books its force.
+  const double work = projected ? rate_work : exchange_accelerations(newmark, dt);
+  rate_work         = 0;
+  for (unsigned int b = 0; b < n_bodies; ++b)
+    for (unsigned int d = 0; d < dim; ++d)
+      impulse[b * dim + d] += dt * contact_force[b][d];
+  return work;
+}
+
+template <int dim>
+double BodyContact<dim>::exchange_accelerations(const ExplicitNewmark &newmark,
+                                                const double dt)
+{
   for (auto &f : contact_force)
     f = Tensor<1, dim>();
   // This step's accelerations decide anew which pairs stick (pairs are in ascending
   // key order, so the list stays sorted).
   stuck_pairs.clear();
-  // Every step counts towards the history row's mean force, with contact or not.
-  impulse_time += dt;
   if (pairs.empty())
     return 0;
   NodalFields<dim> &nodes = transfer.nodes();
@@ -639,9 +640,6 @@ double BodyContact<dim>::on_accelerations(const ExplicitNewmark &newmark, const 
         if (prescribed[pair.body_a])
           work -= dt * (force * nodes.rate[pair.a]);
       });
-  for (unsigned int b = 0; b < n_bodies; ++b)
-    for (unsigned int d = 0; d < dim; ++d)
-      impulse[b * dim + d] += dt * contact_force[b][d];
   return work;
 }
 

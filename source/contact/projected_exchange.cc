@@ -24,13 +24,12 @@ void ProjectedExchange<dim>::respond(const std::vector<ExchangePair<dim>> &pairs
     if (!q.fixed_b)
       jump[q.b] -= impulse_on_a[i] / nodes.mass[q.b];
   }
-  parallel::for_range(particles.size(),
+  parallel::for_range(touching.size(),
                       [&](const std::size_t b, const std::size_t e)
                       {
-                        for (std::size_t p = b; p < e; ++p)
+                        for (std::size_t i = b; i < e; ++i)
                         {
-                          if (!touches[p])
-                            continue;
+                          const std::size_t p = touching[i];
                           const std::size_t o = p * conn.stride;
                           Tensor<1, dim> d;
                           for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
@@ -40,13 +39,12 @@ void ProjectedExchange<dim>::respond(const std::vector<ExchangePair<dim>> &pairs
                         }
                       });
   // Every field the jumping particles reach, zeroed before the scatter.
-  for (std::size_t p = 0; p < particles.size(); ++p)
-    if (touches[p])
-    {
-      const std::size_t o = p * conn.stride;
-      for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
-        response[conn.nodes[o + k]] = Tensor<1, dim>();
-    }
+  for (const std::size_t p : touching)
+  {
+    const std::size_t o = p * conn.stride;
+    for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+      response[conn.nodes[o + k]] = Tensor<1, dim>();
+  }
   transfer.scatter(
       [&](const std::size_t p)
       {
@@ -80,6 +78,11 @@ void ProjectedExchange<dim>::apply(const std::vector<ExchangePair<dim>> &pairs,
   next.resize(pairs.size());
   if (pairs.empty())
     return;
+  // The sweeps visit only the particles near contact, listed once.
+  touching.clear();
+  for (std::size_t p = 0; p < particles.size(); ++p)
+    if (touches[p])
+      touching.push_back(p);
   for (const auto &q : pairs)
   {
     in_pair[q.a] = !q.fixed_a;
@@ -107,6 +110,7 @@ void ProjectedExchange<dim>::apply(const std::vector<ExchangePair<dim>> &pairs,
   for (const auto &q : pairs)
     for (const unsigned int F : {q.a, q.b})
       if (in_pair[F])
+        // A floor against a field whose particles barely reach its pair fields.
         scale[F] = std::max(scale[F] / nodes.mass[F], 1e-3);
 
   const std::vector<Tensor<1, dim>> &rate = nodes.rate;
@@ -144,29 +148,22 @@ void ProjectedExchange<dim>::apply(const std::vector<ExchangePair<dim>> &pairs,
     std::swap(next, impulse_on_a);
   }
   respond(pairs, transfer, particles, touches, impulse_on_a);
-  parallel::for_range(particles.size(),
-                      [&](const std::size_t b, const std::size_t e)
-                      {
-                        for (std::size_t p = b; p < e; ++p)
-                          if (touches[p])
-                            velocity[p] += delta[p];
-                      });
-  for (std::size_t p = 0; p < particles.size(); ++p)
-    if (touches[p])
+  for (const std::size_t p : touching)
+  {
+    velocity[p] += delta[p];
+    const std::size_t o = p * conn.stride;
+    for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
     {
-      const std::size_t o = p * conn.stride;
-      for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
-      {
-        const unsigned int F = conn.nodes[o + k];
-        // Each field once: the response is cleared once it is applied.
-        if (response[F] == Tensor<1, dim>())
-          continue;
-        nodes.momentum[F] += response[F];
-        if (nodes.mass[F] > mass_tolerance)
-          nodes.rate[F] += response[F] / nodes.mass[F];
-        response[F] = Tensor<1, dim>();
-      }
+      const unsigned int F = conn.nodes[o + k];
+      // Each field once: the response is cleared once it is applied.
+      if (response[F] == Tensor<1, dim>())
+        continue;
+      nodes.momentum[F] += response[F];
+      if (nodes.mass[F] > mass_tolerance)
+        nodes.rate[F] += response[F] / nodes.mass[F];
+      response[F] = Tensor<1, dim>();
     }
+  }
 }
 
 template class ProjectedExchange<2>;

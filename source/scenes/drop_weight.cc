@@ -161,15 +161,7 @@ public:
       const double axis       = cx + 0.5 * side * span;
       if (single_field)
       {
-        bool is_body = true;
-        try
-        {
-          (void)find_body(prm, n_bodies, name, "Scene/Supports");
-        }
-        catch (const ExcBadInput &)
-        {
-          is_body = false;
-        }
+        const bool is_body = body_number(prm, n_bodies, name) < n_bodies;
         AssertThrow(!is_body && n_constraints >= 2,
                     ExcBadInput("Scene/Supports",
                                 "with Contact/Type = none the supports are node sets: "

@@ -14,8 +14,8 @@ public:
 };
 } // namespace scenes
 
-unsigned int find_body(ParameterHandler &prm, const unsigned int n_bodies,
-                       const std::string &name, const std::string &owner)
+unsigned int body_number(ParameterHandler &prm, const unsigned int n_bodies,
+                         const std::string &name)
 {
   for (unsigned int b = 0; b < n_bodies; ++b)
   {
@@ -25,8 +25,15 @@ unsigned int find_body(ParameterHandler &prm, const unsigned int n_bodies,
     if (n == name)
       return b;
   }
-  AssertThrow(false, ExcBadInput(owner, "no Body N/Name is '" + name + "'"));
-  return 0;
+  return n_bodies;
+}
+
+unsigned int find_body(ParameterHandler &prm, const unsigned int n_bodies,
+                       const std::string &name, const std::string &owner)
+{
+  const unsigned int b = body_number(prm, n_bodies, name);
+  AssertThrow(b < n_bodies, ExcBadInput(owner, "no Body N/Name is '" + name + "'"));
+  return b;
 }
 
 void set_entry(ParameterHandler &prm, const std::string &entry, const std::string &value,

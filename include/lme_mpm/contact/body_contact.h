@@ -186,6 +186,9 @@ private:
 
   /// Pairs in contact at the shared nodes, from this step's rates.
   void find_pairs(double mass_tolerance);
+  /// 'nodal': the exchange on the corrector's trial velocities; records the forces,
+  /// returns the prescribed bodies' work.
+  double exchange_accelerations(const ExplicitNewmark &newmark, double dt);
 
   const BackgroundGrid<dim> &grid;
   GridTransfer<dim> &transfer;

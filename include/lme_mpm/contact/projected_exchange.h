@@ -65,6 +65,8 @@ private:
   std::vector<Tensor<1, dim>> jump, response, delta, next;
   std::vector<double> scale;
   std::vector<std::uint8_t> in_pair;
+  /// The particles flagged in `touches`, this step.
+  std::vector<std::size_t> touching;
 };
 } // namespace lme_mpm
 

@@ -93,6 +93,10 @@ public:
 template <int dim>
 using SceneRegistry = Registry<Scene<dim>, SceneContext<dim>>;
 
+/// The N of the "Body N" whose "Name" is @p name, or @p n_bodies if none is.
+unsigned int body_number(ParameterHandler &prm, unsigned int n_bodies,
+                         const std::string &name);
+
 /**
  * The N of the "Body N" whose "Name" is @p name among the first @p n_bodies (read
  * from @p prm, at its top level); throws ExcBadInput naming @p owner (the scene entry
