@@ -178,12 +178,12 @@ public:
 
 private:
   /**
-   * The opening of the band particle @p p lies in, as a fraction of the critical
-   * opening: the largest of its own (@p own) and those of the softening particles
-   * across the band from it, on the line through it along its max principal strain
-   * (within a quarter of its cell size @p h_p of that line) and no farther than the
-   * shape functions' reach (crack_band()). Smooth functions spread a crack's jump over
-   * particles up to two cells from it, each straining by a share of the jump; with
+   * The opening of the band particle @p p lies in, as a fraction of p's critical
+   * opening w_c f_t / s0_p: the largest of its own (@p own) and those of the softening
+   * particles across the band from it, on the line through it along its max principal
+   * strain (within a quarter of its cell size @p h_p of that line) and no farther than
+   * the shape functions' reach (crack_band()). Smooth functions spread a crack's jump
+   * over particles up to two cells from it, each straining by a share of the jump; with
    * its own opening alone each would go on carrying stress across a band whose middle
    * has failed (stress locking) and dissipate more as the crack keeps opening. With
    * the band's opening they lose their traction together, once. Particles beyond the
@@ -205,14 +205,21 @@ private:
     double band      = own;
     for (auto q = nb.begin(p); q != nb.end(p); ++q)
     {
-      if (F.crack_opening[*q] <= band)
+      if (F.crack_opening[*q] <= 0)
+        continue;
+      // The band shares one opening w, not one fraction of a critical opening: q's
+      // fraction is of its own w_end = w_c f_t / s0_q, p's of w_c f_t / s0_p, and near
+      // a notch tip s0 / f_t ranges from 1 to 3, so q's fraction taken as p's would
+      // break p at a third of its critical opening.
+      const double shared = F.crack_opening[*q] * P.onset_stress[p] / P.onset_stress[*q];
+      if (shared <= band)
         continue;
       if (!have_normal) // only once a neighbour is more open than p
         n = eigenvectors(P.strain[p])[0].second, have_normal = true;
       const Tensor<1, dim> d = P.position[*q] - P.position[p];
       const double along     = d * n;
       if (std::abs(along) <= along_max && d.norm_square() - along * along <= off2)
-        band = std::min(1.0, F.crack_opening[*q]);
+        band = std::min(1.0, shared);
     }
     return band;
   }
