@@ -4,7 +4,7 @@
 set -euo pipefail
 packages=(libdeal.ii-dev libgtest-dev googletest libboost-program-options-dev libeigen3-dev
           nlohmann-json3-dev
-          libbenchmark-dev cmake g++ make python3 python3-matplotlib)
+          libbenchmark-dev cmake g++ make python3 python3-matplotlib openmpi-bin)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

@@ -97,7 +97,8 @@ int main(int argc, char **argv)
       return 2;
     }
 
-    // One MPI rank for now; TBB keeps all cores unless --threads caps it.
+    // MPI ranks split the grid (mpirun -np N); TBB threads work inside each rank and
+    // keep all cores unless --threads caps them.
     const MpiSession mpi(argc, argv);
     if (vm.count("threads"))
     {
@@ -112,8 +113,25 @@ int main(int argc, char **argv)
     const std::vector<std::string> overrides =
         vm.count("set") ? vm["set"].as<std::vector<std::string>>()
                         : std::vector<std::string>();
-    lme_mpm::run_parameter_file(vm["file"].as<std::string>(), overrides, std::cout,
-                                vm.count("resume") ? vm["resume"].as<std::string>() : "");
+    try
+    {
+      lme_mpm::run_parameter_file(vm["file"].as<std::string>(), overrides, std::cout,
+                                  vm.count("resume") ? vm["resume"].as<std::string>()
+                                                     : "");
+    }
+    catch (const std::exception &e)
+    {
+      // On several ranks an error may reach one rank only while the others wait for
+      // it in a collective call: stop them all (the output written so far stays).
+      if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+      {
+        std::cerr << "lme-mpm: error on rank "
+                  << dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) << ": "
+                  << lme_mpm::input::concise_message(e) << std::endl;
+        MPI_Abort(MPI_COMM_WORLD, 1);
+      }
+      throw;
+    }
   }
   catch (const std::exception &e)
   {

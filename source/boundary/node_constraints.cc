@@ -142,8 +142,8 @@ Tensor<1, dim> NodeConstraint<dim>::velocity(const unsigned int i, const double 
 
 template <int dim>
 void NodeConstraint<dim>::update_reaction(
-    const FieldLayout &layout, const std::vector<double> &mass,
-    const std::vector<Tensor<1, dim>> &acceleration,
+    const FieldLayout &layout, const std::vector<std::uint8_t> *owned_nodes,
+    const std::vector<double> &mass, const std::vector<Tensor<1, dim>> &acceleration,
     const std::vector<Tensor<1, dim>> &force,
     const std::vector<Tensor<1, dim>> *mass_times_acceleration,
     const std::vector<Tensor<1, dim>> &rate, const double dt, double &work)
@@ -154,12 +154,19 @@ void NodeConstraint<dim>::update_reaction(
                                               : mass[K] * acceleration[K][d];
     return ma - force[K][d];
   };
-  const Tensor<1, dim> old_reaction = total_reaction;
-  total_reaction                    = Tensor<1, dim>();
+  previous_reaction = total_reaction;
+  total_reaction    = Tensor<1, dim>();
   Tensor<1, dim> mean_rate;
   for (unsigned int i = 0; i < node_list.size(); ++i)
   {
     const unsigned int I = node_list[i];
+    // Imposed rates are the same on every rank; reactions come from the rank that
+    // owns the node (elsewhere its particles may be missing).
+    for (unsigned int d = 0; d < dim; ++d)
+      if (component_mask[d])
+        mean_rate[d] += rate[I][d];
+    if (owned_nodes && !(*owned_nodes)[I])
+      continue;
     for (unsigned int d = 0; d < dim; ++d)
       if (component_mask[d])
       {
@@ -169,11 +176,16 @@ void NodeConstraint<dim>::update_reaction(
         total_reaction[d] += r;
         work += 0.5 * (node_reaction[i][d] + r) * dt * rate[I][d];
         node_reaction[i][d] = r;
-        mean_rate[d] += rate[I][d];
       }
   }
   mean_displacement += (dt / node_list.size()) * mean_rate;
-  total_impulse += (0.5 * dt) * (old_reaction + total_reaction);
+}
+
+template <int dim>
+void NodeConstraint<dim>::finish_reaction(const Tensor<1, dim> &reaction, const double dt)
+{
+  total_reaction = reaction;
+  total_impulse += (0.5 * dt) * (previous_reaction + total_reaction);
 }
 
 template <int dim>
@@ -249,9 +261,24 @@ double NodeConstraints<dim>::update_reactions(
 {
   double work = 0;
   for (auto &c : sets)
-    c->update_reaction(layout, mass, acceleration, force, mass_times_acceleration, rate,
-                       dt, work);
-  return work;
+    c->update_reaction(layout, owned_nodes, mass, acceleration, force,
+                       mass_times_acceleration, rate, dt, work);
+  // Each rank summed its own nodes: the totals and the work over all of them.
+  std::vector<double> totals;
+  for (const auto &c : sets)
+    for (unsigned int d = 0; d < dim; ++d)
+      totals.push_back(c->reaction()[d]);
+  totals.push_back(work);
+  if (sum_over_ranks)
+    sum_over_ranks(totals);
+  for (unsigned int s = 0; s < sets.size(); ++s)
+  {
+    Tensor<1, dim> r;
+    for (unsigned int d = 0; d < dim; ++d)
+      r[d] = totals[s * dim + d];
+    sets[s]->finish_reaction(r, dt);
+  }
+  return totals.back();
 }
 
 template <int dim>

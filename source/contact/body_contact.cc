@@ -458,7 +458,10 @@ void BodyContact<dim>::on_rates(const double mass_tolerance, const double dt)
   rate_work = 0;
   stuck_pairs.clear();
   if (pairs.empty())
+  {
+    sum_forces();
     return;
+  }
   exchange_pairs.clear();
   for (const Pair &q : pairs)
     exchange_pairs.push_back({q.a, q.b, prescribed[q.body_a] != 0,
@@ -467,7 +470,9 @@ void BodyContact<dim>::on_rates(const double mass_tolerance, const double dt)
                            particles.velocity, pair_impulse, sweeps, mass_tolerance);
   for (std::size_t i = 0; i < pairs.size(); ++i)
   {
-    const Pair &q              = pairs[i];
+    const Pair &q = pairs[i];
+    if (!reports(q.a))
+      continue;
     const Tensor<1, dim> force = pair_impulse[i] / dt;
     contact_force[q.body_a] += force;
     contact_force[q.body_b] -= force;
@@ -477,6 +482,28 @@ void BodyContact<dim>::on_rates(const double mass_tolerance, const double dt)
     if (prescribed[q.body_a])
       rate_work -= pair_impulse[i] * rate[q.a];
   }
+  sum_forces();
+}
+
+template <int dim>
+bool BodyContact<dim>::reports(const unsigned int F) const
+{
+  return !owned_nodes || (*owned_nodes)[transfer.nodes().layout.node_of(F)];
+}
+
+template <int dim>
+void BodyContact<dim>::sum_forces()
+{
+  if (!sum_over_ranks)
+    return;
+  std::vector<double> v;
+  for (const auto &f : contact_force)
+    for (unsigned int d = 0; d < dim; ++d)
+      v.push_back(f[d]);
+  sum_over_ranks(v);
+  for (unsigned int b = 0; b < contact_force.size(); ++b)
+    for (unsigned int d = 0; d < dim; ++d)
+      contact_force[b][d] = v[b * dim + d];
 }
 
 template <int dim>
@@ -613,7 +640,10 @@ double BodyContact<dim>::exchange_accelerations(const ExplicitNewmark &newmark,
   // key order, so the list stays sorted).
   stuck_pairs.clear();
   if (pairs.empty())
+  {
+    sum_forces();
     return 0;
+  }
   NodalFields<dim> &nodes = transfer.nodes();
   double work             = 0;
   const double scale      = newmark.gamma * dt;
@@ -630,6 +660,8 @@ double BodyContact<dim>::exchange_accelerations(const ExplicitNewmark &newmark,
       {
         if (stuck)
           stuck_pairs.push_back(pair.key);
+        if (!reports(pair.a))
+          return;
         // The force over the step that changes a's end velocity by impulse / m_a.
         const Tensor<1, dim> force = impulse_on_a / scale;
         contact_force[pair.body_a] += force;
@@ -640,6 +672,7 @@ double BodyContact<dim>::exchange_accelerations(const ExplicitNewmark &newmark,
         if (prescribed[pair.body_a])
           work -= dt * (force * nodes.rate[pair.a]);
       });
+  sum_forces();
   return work;
 }
 

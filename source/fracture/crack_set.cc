@@ -356,8 +356,9 @@ bool CrackSet<dim>::grow(const ParticleStore<dim> &particles,
       failed.push_back(p);
   if (failed.empty())
     return false;
-  const double max_step = 2.5 * particle_spacing, min_step = 0.5 * particle_spacing;
-  bool grown = false;
+  const double max_step = growth_reach(particle_spacing),
+               min_step = 0.5 * particle_spacing;
+  bool grown            = false;
   for (auto &line : lines)
     for (const bool at_end : {true, false})
       for (;;)

@@ -103,10 +103,28 @@ void FractureCoupling<dim>::check_neighbourhood(
 }
 
 template <int dim>
+double FractureCoupling<dim>::reach() const
+{
+  if (!any_model)
+    return 0;
+  const double h = grid->max_spacing();
+  double r       = 0;
+  for (const auto &f : models)
+    if (f)
+      r = std::max(r, f->epsilon(h));
+  double band = 0;
+  for (const double b : fields.band_reach)
+    band = std::max(band, b);
+  return r + band * h;
+}
+
+template <int dim>
 void FractureCoupling<dim>::prepare(const ParticleStore<dim> &store)
 {
   const std::size_t n = store.size();
-  if (prepared_size == n)
+  // Per-particle lengths follow the particles: recomputed when they were reordered
+  // (sorted by cell, or exchanged between ranks).
+  if (prepared_size == n && prepared_version == store.order_version())
     return;
   // On a graded grid each particle's lengths follow the cell it started in; the
   // neighbourhood is searched to the widest radius, and each model keeps the
@@ -133,6 +151,9 @@ void FractureCoupling<dim>::prepare(const ParticleStore<dim> &store)
     for (const double h : fields.spacing)
       h_largest = std::max(h_largest, h);
   }
+  // Every rank searches to the radius of all the particles.
+  if (max_over_ranks)
+    h_largest = max_over_ranks(h_largest);
   radius      = 0;
   seeded_rows = true;
   thresholds.fill(std::numeric_limits<double>::infinity());
@@ -153,7 +174,8 @@ void FractureCoupling<dim>::prepare(const ParticleStore<dim> &store)
   fields.energy_density.resize(n);
   fields.crack_opening.resize(n);
   seeds.resize(n);
-  prepared_size = n;
+  prepared_size    = n;
+  prepared_version = store.order_version();
 }
 
 template <int dim>

@@ -11,16 +11,70 @@ ParticleOutput<dim>::ParticleOutput(const std::string &directory)
 {
 }
 
-template <int dim>
-void ParticleOutput<dim>::write(const ParticleStore<dim> &particles, const double time)
+namespace
 {
-  const std::size_t n = particles.size();
-  // Vectors first, then scalars: the effective stress (what the forces use) and the
-  // undamaged one, the max principal effective stress, damage, ids.
+/// One output's particle data and VTK flags.
+template <int dim>
+struct Frame
+{
+  explicit Frame(const double time) : flags(time)
+  {
+    flags.compression_level = DataOutBase::VtkFlags::best_speed;
+  }
+  void write_vtu(std::ostream &out) const
+  {
+    DataOutBase::write_vtu(patches, names, vectors, flags, out);
+  }
+  std::vector<DataOutBase::Patch<0, dim>> patches;
   std::vector<std::string> names;
   std::vector<std::tuple<unsigned int, unsigned int, std::string,
                          DataComponentInterpretation::DataComponentInterpretation>>
       vectors;
+  DataOutBase::VtkFlags flags;
+};
+} // namespace
+
+template <int dim>
+void ParticleOutput<dim>::write(const ParticleStore<dim> &particles, const double time)
+{
+  Frame<dim> frame(time);
+  patches(particles, frame.patches, frame.names, frame.vectors);
+  particle_files.add(time, [&](std::ostream &out) { frame.write_vtu(out); });
+}
+
+template <int dim>
+void ParticleOutput<dim>::write_piece(const ParticleStore<dim> &particles,
+                                      const double time, const unsigned int rank,
+                                      const unsigned int n_ranks)
+{
+  Frame<dim> frame(time);
+  patches(particles, frame.patches, frame.names, frame.vectors);
+  particle_files.add_piece(
+      time, rank, n_ranks, [&](std::ostream &out) { frame.write_vtu(out); },
+      [&](std::ostream &out, const std::vector<std::string> &pieces)
+      {
+        DataOutBase::write_pvtu_record(out, pieces, frame.names, frame.vectors,
+                                       frame.flags);
+      });
+}
+
+template <int dim>
+void ParticleOutput<dim>::patches(
+    const ParticleStore<dim> &particles, std::vector<DataOutBase::Patch<0, dim>> &patches,
+    std::vector<std::string> &names,
+    std::vector<std::tuple<unsigned int, unsigned int, std::string,
+                           DataComponentInterpretation::DataComponentInterpretation>>
+        &vectors) const
+{
+  std::vector<std::size_t> shown;
+  for (std::size_t p = 0; p < particles.size(); ++p)
+    if (!particles.ghost[p])
+      shown.push_back(p);
+  const std::size_t n = shown.size();
+  // Vectors first, then scalars: the effective stress (what the forces use) and the
+  // undamaged one, the max principal effective stress, damage, ids.
+  names.clear();
+  vectors.clear();
   for (const char *v : {"displacement", "velocity"})
   {
     vectors.emplace_back(names.size(), names.size() + dim - 1, v,
@@ -37,12 +91,13 @@ void ParticleOutput<dim>::write(const ParticleStore<dim> &particles, const doubl
                         "material_id", "body_id", "particle_id", "density"})
     names.push_back(s);
 
-  std::vector<DataOutBase::Patch<0, dim>> patches(n);
-  for (std::size_t p = 0; p < n; ++p)
+  patches.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
   {
-    auto &patch       = patches[p];
-    patch.vertices[0] = particles.position[p];
-    patch.patch_index = p;
+    const std::size_t p = shown[i];
+    auto &patch         = patches[i];
+    patch.vertices[0]   = particles.position[p];
+    patch.patch_index   = i;
     patch.data.reinit(names.size(), 1);
     unsigned int k = 0;
     for (unsigned int d = 0; d < dim; ++d)
@@ -63,11 +118,6 @@ void ParticleOutput<dim>::write(const ParticleStore<dim> &particles, const doubl
     patch.data(k++, 0) = particles.id[p];
     patch.data(k++, 0) = particles.density[p];
   }
-
-  DataOutBase::VtkFlags flags(time);
-  flags.compression_level = DataOutBase::VtkFlags::best_speed;
-  particle_files.add(time, [&](std::ostream &out)
-                     { DataOutBase::write_vtu(patches, names, vectors, flags, out); });
 }
 
 template class ParticleOutput<2>;

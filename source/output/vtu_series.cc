@@ -42,4 +42,24 @@ void VtuSeries::add(const double time,
   write_atomically(directory + "/" + stem + ".pvd", [&](std::ostream &out)
                    { dealii::DataOutBase::write_pvd_record(out, written); });
 }
+void VtuSeries::add_piece(
+    const double time, const unsigned int rank, const unsigned int n_ranks,
+    const std::function<void(std::ostream &)> &write_piece,
+    const std::function<void(std::ostream &, const std::vector<std::string> &)>
+        &write_pvtu)
+{
+  std::ostringstream base;
+  base << stem << "_" << std::setw(5) << std::setfill('0') << written.size();
+  std::vector<std::string> pieces;
+  for (unsigned int r = 0; r < n_ranks; ++r)
+    pieces.push_back(base.str() + "." + std::to_string(r) + ".vtu");
+  write_atomically(directory + "/" + pieces[rank], write_piece);
+  written.emplace_back(time, base.str() + ".pvtu");
+  if (rank != 0)
+    return;
+  write_atomically(directory + "/" + base.str() + ".pvtu",
+                   [&](std::ostream &out) { write_pvtu(out, pieces); });
+  write_atomically(directory + "/" + stem + ".pvd", [&](std::ostream &out)
+                   { dealii::DataOutBase::write_pvd_record(out, written); });
+}
 } // namespace lme_mpm

@@ -8,6 +8,7 @@ template <int dim>
 void ParticleStore<dim>::resize(const std::size_t n)
 {
   for_each_field([n](auto &v) { v.resize(n); });
+  ++version;
 }
 
 template <int dim>
@@ -37,7 +38,7 @@ bool ParticleStore<dim>::sort_by_cell(const unsigned int n_cells)
   for (std::size_t p = 0; p < n; ++p)
   {
     ++offsets[cell[p] + 1];
-    if (p > 0 && cell[p] < cell[p - 1])
+    if (p > 0 && (cell[p] < cell[p - 1] || (cell[p] == cell[p - 1] && id[p] < id[p - 1])))
       sorted = false;
   }
   for (unsigned int c = 0; c < n_cells; ++c)
@@ -49,6 +50,16 @@ bool ParticleStore<dim>::sort_by_cell(const unsigned int n_cells)
   std::vector<std::size_t> next(offsets.begin(), offsets.end() - 1);
   for (std::size_t p = 0; p < n; ++p)
     permutation[next[cell[p]]++] = static_cast<std::uint32_t>(p);
+  // Within a cell by id (a few particles per cell: insertion sort).
+  for (unsigned int c = 0; c < n_cells; ++c)
+    for (std::size_t q = offsets[c] + 1; q < offsets[c + 1]; ++q)
+    {
+      const std::uint32_t moving = permutation[q];
+      std::size_t r              = q;
+      for (; r > offsets[c] && id[permutation[r - 1]] > id[moving]; --r)
+        permutation[r] = permutation[r - 1];
+      permutation[r] = moving;
+    }
 
   for_each_field(
       [this, n](auto &field)
@@ -59,6 +70,7 @@ bool ParticleStore<dim>::sort_by_cell(const unsigned int n_cells)
           reordered[q] = field[permutation[q]];
         field.swap(reordered);
       });
+  ++version;
   return true;
 }
 

@@ -120,9 +120,12 @@ void GridTransfer<dim>::particles_to_grid(
         raise_to(reach_below, chunk_below);
         raise_to(reach_above, chunk_above);
       });
-  if (reach_below.load() > below || reach_above.load() > above)
+  unsigned int new_below = reach_below.load(), new_above = reach_above.load();
+  if (agree_reach)
+    agree_reach(new_below, new_above);
+  if (new_below > below || new_above > above)
   {
-    slab_below = reach_below.load(), slab_above = reach_above.load();
+    slab_below = std::max(below, new_below), slab_above = std::max(above, new_above);
     fields.collect_active();
     fields.clear(extra_nodes);
     scatter_chunks([&](const std::size_t b, const std::size_t e)
@@ -227,6 +230,10 @@ double GridTransfer<dim>::grid_to_particles(const ExplicitNewmark &newmark,
                particles.velocity[p], particles.acceleration[p], a, dt);
           particles.acceleration[p] = a;
           particles.position[p] += increment[p];
+          // Ghosts (copies of another rank's particles) are that rank's to sum and
+          // check; their results near the halo's edge are not meant to be right.
+          if (particles.ghost[p])
+            continue;
           if (prescribed_body.empty() || !prescribed_body[particles.body_id[p]])
             pw += particles.mass[p] * (body_force * increment[p]);
           const double move = increment[p].norm();

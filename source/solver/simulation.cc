@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <iomanip>
+#include <numeric>
 #include <sstream>
 
 namespace lme_mpm
@@ -66,7 +67,7 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
     scene->adjust(parameters);
   }
   output_directory = parameters.directory;
-  pcout.set_condition(parameters.verbosity > 0);
+  pcout.set_condition(parameters.verbosity > 0 && ranks.rank() == 0);
   newmark.gamma = parameters.newmark_gamma;
 
   background.parse_parameters(prm);
@@ -137,6 +138,82 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
   if (parameters.output_interval <= 0)
     parameters.output_interval = parameters.end_time / 20;
   setup_output(output_directory);
+  distribute();
+}
+
+template <int dim>
+void Simulation<dim>::distribute()
+{
+  n_particles  = store.size();
+  initial_mass = std::accumulate(store.mass.begin(), store.mass.end(), 0.0);
+  if (!ranks.distributed())
+    return;
+  AssertThrow(parameters.checkpoint_every_steps == 0,
+              ExcBadInput("Checkpoint/Every steps",
+                          "checkpoints are not written on more than one MPI rank yet: "
+                          "set 0, or run on one rank"));
+  AssertThrow(parameters.checkpoint_every_seconds == 0,
+              ExcBadInput("Checkpoint/Every seconds",
+                          "checkpoints are not written on more than one MPI rank yet: "
+                          "set 0, or run on one rank"));
+  // One step of an owned particle reads: its support, the particles sharing those
+  // nodes and theirs again (strains, then forces), and the fracture neighbourhood
+  // and band; each consistent-mass correction pass adds a support there and back,
+  // in the predictor and in the corrector.
+  const double support = shape_function->support_radius(background);
+  const double halo = (4 + 4 * parameters.mass_corrections) * support + fracture.reach() +
+                      contact.reach(support) + 2 * background.max_spacing();
+  ranks.partition(background, halo);
+  ranks.distribute(store);
+  particles_split = true;
+  transfer.set_reach_agreement(
+      [this](unsigned int &below, unsigned int &above)
+      {
+        below = static_cast<unsigned int>(ranks.max(below));
+        above = static_cast<unsigned int>(ranks.max(above));
+      });
+  fracture.set_max_over_ranks([this](const double h) { return ranks.max(h); });
+  constraints.set_distribution(&ranks.owned_nodes(),
+                               [this](std::vector<double> &v) { ranks.sum(v); });
+  contact.set_distribution(&ranks.owned_nodes(),
+                           [this](std::vector<double> &v) { ranks.sum(v); });
+  const auto &halo_cells = ranks.halo_cells();
+  pcout << "lme-mpm: " << ranks.n_ranks() << " MPI ranks; halo " << halo << " m ("
+        << halo_cells[0] << " cells); rank 0 owns " << ranks.n_owned_cells()
+        << " cells and keeps " << ranks.n_halo_cells() << " halo cells, "
+        << Decomposition<dim>::n_owned(store) << " particles and "
+        << store.size() - Decomposition<dim>::n_owned(store) << " ghosts" << std::endl;
+}
+
+template <int dim>
+const ParticleStore<dim> &Simulation<dim>::observed() const
+{
+  if (!ranks.distributed())
+    return store;
+  ranks.gather(store, gathered);
+  return gathered;
+}
+
+template <int dim>
+void Simulation<dim>::stop_if_any(const std::size_t p,
+                                  const std::function<void(std::size_t)> &stop) const
+{
+  if (!ranks.distributed())
+  {
+    if (p < store.size())
+      stop(p);
+    return;
+  }
+  constexpr unsigned long long none = ~0ull;
+  const unsigned long long mine     = p < store.size() ? store.id[p] : none;
+  const unsigned long long lowest   = ranks.min(mine);
+  if (lowest == none)
+    return;
+  if (mine == lowest)
+    stop(p);
+  AssertThrow(false, ExcRunAborted(step_count, t, static_cast<unsigned int>(lowest),
+                                   "another rank",
+                                   "see that rank's message (the run is unstable)"));
 }
 
 template <int dim>
@@ -211,7 +288,17 @@ void Simulation<dim>::step()
   if (fracture.active() && !cracks.empty())
   {
     StageTimer::Scope scope(stages, stage.crack_growth);
-    if (cracks.grow(store, particle_spacing))
+    bool grown = false;
+    if (!ranks.distributed())
+      grown = cracks.grow(store, particle_spacing);
+    else if (cracks.grows())
+    {
+      // Every rank grows its copy of the cracks from the same particles.
+      ParticleStore<dim> view;
+      ranks.gather_failed(store, CrackSet<dim>::growth_reach(particle_spacing), view);
+      grown = cracks.grow(view, particle_spacing);
+    }
+    if (grown)
       cracks.assign_fields(background, crack_reach, transfer.nodes().layout);
   }
   locate_and_sort();
@@ -221,8 +308,8 @@ void Simulation<dim>::step()
   const std::size_t bad = update_particles(correct_accelerations());
   t                     = t_new;
   ++step_count;
-  if (bad < store.size())
-    abort_unstable(bad);
+  stop_if_any(bad, [this](const std::size_t p) { abort_unstable(p); });
+  ranks.exchange(store);
 }
 
 template <int dim>
@@ -262,7 +349,9 @@ template <int dim>
 SceneState<dim> Simulation<dim>::scene_state() const
 {
   SceneState<dim> state;
-  state.particles   = &store;
+  // Output reads every particle: on rank 0, as gathered for this output.
+  // (before the split, every rank holds them all).
+  state.particles   = particles_split ? &gathered : &store;
   state.body_names  = &contact.body_names();
   state.run         = &parameters;
   state.constraints = &constraints;
@@ -287,9 +376,12 @@ void Simulation<dim>::locate_and_sort()
 {
   StageTimer::Scope scope(stages, stage.locate);
   const std::size_t lost = transfer.locate_and_sort();
-  if (lost < store.size())
-    abort_run(lost, "the particle left the background grid (enlarge the grid, or "
-                    "the run is unstable: lower the CFL number)");
+  stop_if_any(lost,
+              [this](const std::size_t p)
+              {
+                abort_run(p, "the particle left the background grid (enlarge the grid, "
+                             "or the run is unstable: lower the CFL number)");
+              });
   // Bodies get their own fields where their supports may meet.
   {
     StageTimer::Scope contact_scope(stages, stage.contact);
@@ -443,7 +535,8 @@ std::size_t Simulation<dim>::update_particles(
   const double body_work =
       transfer.grid_to_particles(newmark, dt, parameters.body_force_at(t + 0.5 * dt),
                                  0.5 * background.min_spacing(), bad);
-  energy.add_external_work(work + body_work + contact_work);
+  // The constraints' work is summed over the ranks already.
+  energy.add_external_work(work + ranks.sum(body_work + contact_work));
   return bad;
 }
 
@@ -527,6 +620,9 @@ void Simulation<dim>::write_checkpoint()
 template <int dim>
 void Simulation<dim>::resume_from(const std::string &directory)
 {
+  AssertThrow(!ranks.distributed(),
+              ExcBadInput("--resume", "resuming is not supported on more than one MPI "
+                                      "rank yet"));
   // Output goes on in the checkpoint's directory.
   setup_output(directory);
   checkpoint::read(directory + "/checkpoint.bin", [&](Archive &ar) { serialize(ar); });
@@ -539,17 +635,26 @@ void Simulation<dim>::resume_from(const std::string &directory)
 template <int dim>
 std::uint64_t Simulation<dim>::state_checksum()
 {
-  std::uint64_t hash = 1469598103934665603ull;
-  auto bytes         = [&](const void *data, const std::size_t size)
+  // FNV-1a of each owned particle's fields, summed over the particles (and ranks):
+  // the same state gives the same sum whatever the order and split of the particles.
+  auto fnv = [](std::uint64_t hash, const void *data, const std::size_t size)
   {
     const auto *c = static_cast<const unsigned char *>(data);
     for (std::size_t i = 0; i < size; ++i)
       hash = (hash ^ c[i]) * 1099511628211ull;
+    return hash;
   };
-  bytes(&t, sizeof(t));
-  store.for_each_field([&](auto &field)
-                       { bytes(field.data(), field.size() * sizeof(field[0])); });
-  return hash;
+  constexpr std::uint64_t basis = 1469598103934665603ull;
+  unsigned long long total      = 0;
+  for (std::size_t p = 0; p < store.size(); ++p)
+    if (!store.ghost[p])
+    {
+      std::uint64_t hash = basis;
+      store.for_each_field([&](auto &field)
+                           { hash = fnv(hash, &field[p], sizeof(field[p])); });
+      total += hash;
+    }
+  return fnv(basis, &t, sizeof(t)) + ranks.sum(total);
 }
 
 // ------------------------------------------------------------------ output
@@ -557,40 +662,78 @@ std::uint64_t Simulation<dim>::state_checksum()
 template <int dim>
 std::map<std::string, double> Simulation<dim>::energies() const
 {
-  return energy.measure(store, materials).as_map();
+  const ParticleStore<dim> &all = observed();
+  return energy.measure(all, materials).as_map();
 }
 
 template <int dim>
 void Simulation<dim>::write_output_row()
 {
-  const Energies e = energy.measure(store, materials);
+  // A distributed run reads every particle on rank 0, which writes the files.
+  const ParticleStore<dim> &all = observed();
+  std::vector<double> nodal_mass, nodal_rate;
+  if (parameters.write_grid && ranks.distributed())
+  {
+    // Each node from the rank that owns it (elsewhere its sums miss particles).
+    const unsigned int n = background.n_nodes();
+    nodal_mass.assign(n * (1 + dim), 0.0);
+    for (unsigned int I = 0; I < n && I < transfer.nodes().mass.size(); ++I)
+      if (ranks.owns_node(I))
+      {
+        nodal_mass[I] = transfer.nodes().mass[I];
+        for (unsigned int d = 0; d < dim; ++d)
+          nodal_mass[n + I * dim + d] = transfer.nodes().rate[I][d];
+      }
+    ranks.sum(nodal_mass);
+  }
+  // Each rank writes its own particles.
+  if (parameters.write_particles && ranks.distributed())
+    particle_output->write_piece(store, t, ranks.rank(), ranks.n_ranks());
+  if (!writes_output())
+    return;
+  const Energies e = energy.measure(all, materials);
   energy.record(e, step_count == 0);
   std::ostringstream row;
   row << std::setprecision(10) << step_count << "," << t << ",";
   EnergyBalance<dim>::write_row(row, e);
   constraints.write_row(row);
-  contact.write_row(row, store);
-  probes.write_row(row, store);
+  contact.write_row(row, all);
+  probes.write_row(row, all);
   scene->write_history_row(row, scene_state());
-  exact.write_row(row, store, t);
+  exact.write_row(row, all, t);
   history.write_row(row.str());
   results["final_total_energy"]   = e.total();
   results["final_kinetic_energy"] = e.kinetic;
   results["final_strain_energy"]  = e.strain;
 
-  if (parameters.write_particles)
+  if (parameters.write_particles && !ranks.distributed())
     particle_output->write(store, t);
-  if (parameters.write_grid)
+  if (parameters.write_grid && ranks.distributed())
+  {
+    const unsigned int n = background.n_nodes();
+    std::vector<double> mass(nodal_mass.begin(), nodal_mass.begin() + n);
+    std::vector<Tensor<1, dim>> rate(n);
+    for (unsigned int I = 0; I < n; ++I)
+      for (unsigned int d = 0; d < dim; ++d)
+        rate[I][d] = nodal_mass[n + I * dim + d];
+    grid_output->write(background, mass, rate, t);
+  }
+  else if (parameters.write_grid)
     grid_output->write(background, transfer.nodes().mass, transfer.nodes().rate, t);
 }
 
 template <int dim>
 void Simulation<dim>::prepare_output()
 {
-  exact.compute_norms(store, parameters.end_time, parameters.output_interval);
+  exact.compute_norms(observed(), parameters.end_time, parameters.output_interval);
 
-  // Only now, with every input checked, does the run write anything.
-  std::filesystem::create_directories(output_directory);
+  // Only now, with every input checked, does the run write anything (rank 0 makes
+  // the directory the others write their pieces to).
+  if (writes_output())
+    std::filesystem::create_directories(output_directory);
+  ranks.barrier();
+  if (!writes_output())
+    return;
   if (resumed)
     history.resume(output_directory, resumed_history_size);
   else
@@ -605,7 +748,7 @@ void Simulation<dim>::prepare_output()
     exact.write_header(header);
     history.create(output_directory, header.str());
   }
-  pcout << "lme-mpm: " << dim << "D, " << store.size() << " particles, "
+  pcout << "lme-mpm: " << dim << "D, " << n_particles << " particles, "
         << background.n_nodes() << " nodes, shape functions '" << shape_function->name()
         << "', dt = " << dt << " s, " << n_steps << " steps, " << transfer.threads()
         << " thread(s)" << std::endl;
@@ -618,7 +761,7 @@ void Simulation<dim>::report_progress(const std::chrono::steady_clock::time_poin
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   pcout << "  step " << std::setw(8) << step_count << "  t = " << std::setw(12)
         << std::setprecision(5) << t << "  " << std::setw(3) << 100 * step_count / n_steps
-        << "%  " << std::setprecision(3) << store.size() * step_count / elapsed
+        << "%  " << std::setprecision(3) << n_particles * step_count / elapsed
         << " particle-steps/s  ETA " << std::setprecision(3)
         << elapsed * (n_steps - step_count) / step_count << " s" << std::endl;
 }
@@ -652,7 +795,8 @@ void Simulation<dim>::advance_to_end(TimerOutput &timer,
       // would never move it by addition).
       next_output_time =
           output_interval * (std::floor((t + 0.5 * dt) / output_interval) + 1);
-      const std::string reason = scene->finished(scene_state());
+      const std::string reason =
+          ranks.broadcast(writes_output() ? scene->finished(scene_state()) : "");
       if (!reason.empty())
       {
         results["stopped_early"] = 1;
@@ -684,13 +828,19 @@ void Simulation<dim>::advance_to_end(TimerOutput &timer,
 template <int dim>
 RunSummary Simulation<dim>::summarise(const double wall)
 {
+  // Every rank takes part in the gathering; rank 0 summarises.
+  const ParticleStore<dim> &all = observed();
+  RunSummary summary;
+  if (!writes_output())
+    return summary;
   results["wall_seconds"]              = wall;
   results["steps"]                     = step_count;
-  results["particles"]                 = store.size();
+  results["particles"]                 = n_particles;
+  results["ranks"]                     = ranks.n_ranks();
   results["nodes"]                     = background.n_nodes();
   results["threads"]                   = transfer.threads();
   results["time_step"]                 = dt;
-  results["particle_steps_per_second"] = store.size() * double(step_count) / wall;
+  results["particle_steps_per_second"] = n_particles * double(step_count) / wall;
   results["max_energy_drift"]          = energy.max_drift();
   stages.add_results(results);
   peak_force.add_results(results);
@@ -699,19 +849,24 @@ RunSummary Simulation<dim>::summarise(const double wall)
   exact.add_results(results);
   for (const auto &s : shape_function->statistics())
     results["shape_function_" + s.first] = s.second;
-  fracture.add_statistics(store, results);
+  // What the ranks hold now, against what the run started with (migration must
+  // neither lose nor copy a particle).
+  results["final_particles"] = all.size();
+  results["final_mass"]      = std::accumulate(all.mass.begin(), all.mass.end(), 0.0);
+  results["initial_mass"]    = initial_mass;
+  fracture.add_statistics(all, results);
   if (fracture.active())
   {
-    results["dissipated_energy"] = energies()["dissipated_energy"];
-    write_failed_particles(output_directory + "/failed_particles.csv", store);
-    write_damage_field(output_directory + "/damage.csv", store);
+    results["dissipated_energy"] =
+        energy.measure(all, materials).as_map()["dissipated_energy"];
+    write_failed_particles(output_directory + "/failed_particles.csv", all);
+    write_damage_field(output_directory + "/damage.csv", all);
   }
   if (!cracks.empty())
   {
     write_polylines(output_directory + "/cracks.csv", cracks.polylines());
     results["crack_second_fields"] = cracks.n_crack_nodes();
   }
-  RunSummary summary;
   summary.values = results;
   return summary;
 }
@@ -732,9 +887,14 @@ std::map<std::string, double> Simulation<dim>::run()
   {
     // Any failure inside the loop (an unstable step, a shape-function solve that does
     // not converge) ends the run with what it produced kept on disk.
-    status = "aborted";
-    if (dynamic_cast<const ExcRunAborted *>(&e) == nullptr &&
-        dynamic_cast<const ExcStepLimit *>(&e) == nullptr)
+    status                  = "aborted";
+    const bool on_all_ranks = dynamic_cast<const ExcRunAborted *>(&e) != nullptr ||
+                              dynamic_cast<const ExcStepLimit *>(&e) != nullptr;
+    // An error on one rank only (the others wait in a collective call): the
+    // program stops every rank (main.cc); writing output here would hang.
+    if (ranks.distributed() && !on_all_ranks)
+      throw;
+    if (!on_all_ranks)
     {
       std::ostringstream where;
       where << "Run stopped at step " << step_count + 1 << ", time " << t << ": "
@@ -755,12 +915,16 @@ std::map<std::string, double> Simulation<dim>::run()
 
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  RunSummary summary = summarise(wall);
-  summary.status     = status;
-  summary.message    = message.empty() ? stop_reason : message;
-  summary.write(output_directory + "/summary.json", shape_function->name(),
-                state_checksum(), dim);
-  // Past this point the output is on disk; the caller reports the failure.
+  RunSummary summary           = summarise(wall);
+  summary.status               = status;
+  summary.message              = message.empty() ? stop_reason : message;
+  const std::uint64_t checksum = state_checksum();
+  if (writes_output())
+    summary.write(output_directory + "/summary.json", shape_function->name(), checksum,
+                  dim);
+  // Past this point the output is on disk (on every rank); the caller reports the
+  // failure.
+  ranks.barrier();
   AssertThrow(status == "completed", ExcMessage(message));
   timer.print_summary();
   if (pcout.is_active())

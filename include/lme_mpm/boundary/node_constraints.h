@@ -9,6 +9,7 @@
 #include <lme_mpm/grid/field_layout.h>
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -66,13 +67,21 @@ public:
    * displacement after a step with displacement rate @p rate. Returns the work of the
    * reaction over the step: the mean of the old and new reaction times the imposed
    * displacement increment (exact for the central-difference scheme), added to
-   * @p work node by node.
+   * @p work node by node. Only the nodes flagged in @p owned_nodes count (all if
+   * null): in a distributed run each rank sums its own, and finish_reaction() takes
+   * the sum over the ranks.
    */
-  void update_reaction(const FieldLayout &layout, const std::vector<double> &mass,
+  void update_reaction(const FieldLayout &layout,
+                       const std::vector<std::uint8_t> *owned_nodes,
+                       const std::vector<double> &mass,
                        const std::vector<Tensor<1, dim>> &acceleration,
                        const std::vector<Tensor<1, dim>> &force,
                        const std::vector<Tensor<1, dim>> *mass_times_acceleration,
                        const std::vector<Tensor<1, dim>> &rate, double dt, double &work);
+
+  /// Sets the step's reaction to @p reaction (summed over the ranks) and adds its
+  /// impulse.
+  void finish_reaction(const Tensor<1, dim> &reaction, double dt);
 
   /// Force the constraint applies (N), summed over the set.
   const Tensor<1, dim> &reaction() const { return total_reaction; }
@@ -102,7 +111,7 @@ private:
   std::vector<Point<dim>> points;
   bool constant = false;
   Tensor<1, dim> constant_value;
-  Tensor<1, dim> total_reaction, mean_displacement, total_impulse;
+  Tensor<1, dim> total_reaction, mean_displacement, total_impulse, previous_reaction;
   /// Reaction on each node of the set at the end of the last step (for the work).
   std::vector<Tensor<1, dim>> node_reaction;
 };
@@ -136,6 +145,17 @@ public:
   void impose_accelerations(std::vector<Tensor<1, dim>> &x, const FieldLayout &layout,
                             double t, double h) const;
 
+  /**
+   * Distributed runs: reactions are summed over the nodes this rank owns
+   * (@p owned_nodes, per grid node), then over the ranks by @p sum_over_ranks.
+   */
+  void set_distribution(const std::vector<std::uint8_t> *owned,
+                        std::function<void(std::vector<double> &)> sum)
+  {
+    owned_nodes    = owned;
+    sum_over_ranks = std::move(sum);
+  }
+
   /// Updates every set's reaction and displacement; returns their work over the step.
   double update_reactions(const FieldLayout &layout, const std::vector<double> &mass,
                           const std::vector<Tensor<1, dim>> &acceleration,
@@ -157,6 +177,8 @@ public:
 private:
   std::vector<std::unique_ptr<NodeConstraint<dim>>> sets;
   std::vector<unsigned int> nodes;
+  const std::vector<std::uint8_t> *owned_nodes = nullptr;
+  std::function<void(std::vector<double> &)> sum_over_ranks;
 };
 } // namespace lme_mpm
 

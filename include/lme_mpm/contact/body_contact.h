@@ -13,6 +13,7 @@
 #include <lme_mpm/solver/grid_transfer.h>
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <ostream>
@@ -68,6 +69,28 @@ public:
   /// Multi-field contact with at least two bodies.
   bool active() const { return multi_field && n_bodies > 1; }
   bool any_prescribed() const { return n_prescribed > 0; }
+
+  /**
+   * How far one step's exchange reaches from a node through the particles (m), for
+   * a distributed run's halo: the projected exchange passes node to particle to node
+   * once per sweep, and once more for its response scale and its final response.
+   */
+  double reach(const double support_radius) const
+  {
+    return active() && projected ? 2.0 * (sweeps + 2) * support_radius : 0.0;
+  }
+
+  /**
+   * Distributed runs: only the pairs at the nodes this rank owns (@p owned_nodes,
+   * per grid node) count towards the bodies' contact forces and work, and
+   * @p sum_over_ranks sums the forces over the ranks.
+   */
+  void set_distribution(const std::vector<std::uint8_t> *owned,
+                        std::function<void(std::vector<double> &)> sum)
+  {
+    owned_nodes    = owned;
+    sum_over_ranks = std::move(sum);
+  }
   /// Per body: 1 if it moves as prescribed.
   const std::vector<std::uint8_t> &prescribed_bodies() const { return prescribed; }
   const std::string &name(const unsigned int body) const { return names[body]; }
@@ -231,6 +254,12 @@ private:
   std::vector<std::uint64_t> stuck_pairs;
 
   std::vector<Tensor<1, dim>> contact_force;
+  const std::vector<std::uint8_t> *owned_nodes = nullptr;
+  std::function<void(std::vector<double> &)> sum_over_ranks;
+  /// True if pair field @p F's node is this rank's to report.
+  bool reports(unsigned int F) const;
+  /// Sums contact_force over the ranks.
+  void sum_forces();
   std::vector<double> peak_force;
   /// Impulse per body and component since the last history row, and the time it
   /// covers.

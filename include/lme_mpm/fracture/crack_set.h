@@ -86,6 +86,13 @@ public:
    * grew.
    */
   bool grow(const ParticleStore<dim> &particles, double particle_spacing);
+  /// True if the cracks grow with erosion (and there are any).
+  bool grows() const { return growing && !lines.empty(); }
+  /// How far from a failed particle grow() looks for intact ones (m).
+  static double growth_reach(const double particle_spacing)
+  {
+    return 2.5 * particle_spacing;
+  }
 
   /// Replaces the lines by those of a checkpoint (the caller checks that the count
   /// is the parameter file's); call assign_fields() on a fresh layout afterwards.

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -40,6 +41,21 @@ public:
    */
   void parse_parameters(ParameterHandler &prm, const MaterialSet<dim> &materials,
                         const BackgroundGrid<dim> &grid, double thickness);
+
+  /**
+   * The reduction that makes a length the largest over all MPI ranks (distributed
+   * runs; none: one rank).
+   */
+  void set_max_over_ranks(std::function<double(double)> f)
+  {
+    max_over_ranks = std::move(f);
+  }
+
+  /**
+   * How far one fracture update reaches from a particle: the widest neighbourhood
+   * and crack band (m), for the width of a distributed run's halo.
+   */
+  double reach() const;
 
   /// True if any material fractures.
   bool active() const { return any_model; }
@@ -109,7 +125,9 @@ private:
   // positions, so they hold for the whole run).
   static constexpr std::size_t unprepared = static_cast<std::size_t>(-1);
   std::size_t prepared_size               = unprepared;
-  double radius                           = 0; ///< of the neighbourhood search
+  std::uint64_t prepared_version          = 0;
+  std::function<double(double)> max_over_ranks;
+  double radius = 0; ///< of the neighbourhood search
   /// Without a model that gives no trigger: rows only around the seeds.
   bool seeded_rows = false;
   /// A body's crack band reaches beyond its own cell: softening particles then read

@@ -26,6 +26,17 @@ public:
   /// Writes the next file through @p write_vtu and updates the PVD record.
   void add(double time, const std::function<void(std::ostream &)> &write_vtu);
 
+  /**
+   * A distributed run's next file: every rank writes its piece
+   * `<stem>_<index>.<rank>.vtu` through @p write_piece; rank 0 also writes the
+   * `<stem>_<index>.pvtu` that lists the @p n_ranks pieces (@p write_pvtu gets their
+   * names) and updates the PVD record. Every rank calls it once per output.
+   */
+  void add_piece(double time, unsigned int rank, unsigned int n_ranks,
+                 const std::function<void(std::ostream &)> &write_piece,
+                 const std::function<void(std::ostream &,
+                                          const std::vector<std::string> &)> &write_pvtu);
+
   /// The files written so far (for checkpoints), and their restoration on resume.
   const Records &records() const { return written; }
   void restore(const Records &records) { written = records; }

@@ -32,13 +32,20 @@ public:
   void resize(std::size_t n);
 
   /**
-   * Stable counting sort by `cell` (which the caller has filled) over @p n_cells
-   * cells; fills cell_offsets() so that the particles of cell c are
+   * Sorts by `cell` (which the caller has filled) over @p n_cells cells, and by `id`
+   * within a cell; fills cell_offsets() so that the particles of cell c are
    * [cell_offsets[c], cell_offsets[c+1]). Skips the reorder when already sorted.
-   * Returns true if the order changed.
+   * Returns true if the order changed. The order depends on the particles only, not
+   * on the order they came in: a rank holding a subset of the particles sums their
+   * contributions to a node in the same order as one rank holding all of them.
    */
   bool sort_by_cell(unsigned int n_cells);
   const std::vector<std::size_t> &cell_offsets() const { return offsets; }
+  /// Changes whenever particles are reordered, added or removed: per-particle caches
+  /// kept outside the store are stale once it differs from the value they saw.
+  std::uint64_t order_version() const { return version; }
+  /// Records a change of order or size made by a caller (bumps order_version()).
+  void mark_reordered() { ++version; }
 
   // Kinematics.
   std::vector<Point<dim>> position;
@@ -73,6 +80,10 @@ public:
   std::vector<double> crack_opening;
   std::vector<double> dissipated;   ///< fracture energy dissipated so far (J)
   std::vector<std::uint8_t> failed; ///< 1 once fully failed (no stress)
+  /// 1 for a copy of a particle another MPI rank owns (a ghost in this rank's halo):
+  /// it takes part in the step so that the owned particles near the partition
+  /// boundary see all their neighbours, but it is not output, summed or checked.
+  std::vector<std::uint8_t> ghost;
 
   /// Calls f(vector) for every per-particle field.
   template <class F>
@@ -82,12 +93,13 @@ public:
         f(initial_volume), f(density), f(strain), f(strain_increment), f(stress), f(id),
         f(material_id), f(body_id), f(cell), f(lme_lambda), f(lme_position),
         f(lme_lambda_rate), f(damage), f(onset_strain), f(onset_stress), f(crack_opening),
-        f(dissipated), f(failed);
+        f(dissipated), f(failed), f(ghost);
   }
 
 private:
   std::vector<std::size_t> offsets;
   std::vector<std::uint32_t> permutation;
+  std::uint64_t version = 0;
 };
 
 /// The share of its stress particle @p p carries: 1 - damage, and 0 once failed.

@@ -81,6 +81,16 @@ public:
 
   /// Bodies (flag per body index) whose motion is prescribed: the body force does no
   /// work on them.
+  /**
+   * Makes the supports' reach in cell layers the same on every MPI rank (the largest):
+   * the slabs fix the order in which a node sums its particles, which must not
+   * depend on which particles a rank holds.
+   */
+  void set_reach_agreement(std::function<void(unsigned int &, unsigned int &)> f)
+  {
+    agree_reach = std::move(f);
+  }
+
   void set_prescribed_bodies(const std::vector<std::uint8_t> &flags)
   {
     prescribed_body = flags;
@@ -198,6 +208,7 @@ private:
   // How many cell layers the supports have reached below and above their particles'
   // layers so far: the slab width of the scatter.
   unsigned int slab_below = 0, slab_above = 0;
+  std::function<void(unsigned int &, unsigned int &)> agree_reach;
   /// Per particle: the displacement increment of the step.
   std::vector<Tensor<1, dim>> increment;
   std::vector<std::uint8_t> prescribed_body;

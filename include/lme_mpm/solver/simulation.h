@@ -9,6 +9,7 @@
 #include <lme_mpm/base/stage_timer.h>
 #include <lme_mpm/boundary/node_constraints.h>
 #include <lme_mpm/contact/body_contact.h>
+#include <lme_mpm/distributed/decomposition.h>
 #include <lme_mpm/fracture/crack_set.h>
 #include <lme_mpm/fracture/fracture_coupling.h>
 #include <lme_mpm/grid/background_grid.h>
@@ -33,6 +34,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -73,7 +75,10 @@ public:
 
   double time() const { return t; }
   double time_step() const { return dt; }
+  /// This rank's particles (owned ones and ghosts; all of them on one rank).
   const ParticleStore<dim> &particles() const { return store; }
+  /// The split over MPI ranks.
+  const Decomposition<dim> &decomposition() const { return ranks; }
   const BackgroundGrid<dim> &grid() const { return background; }
   /**
    * Continues the run saved in @p directory/checkpoint.bin (written by a run of the same
@@ -102,6 +107,17 @@ private:
   std::size_t
   update_particles(const std::vector<Tensor<1, dim>> *mass_times_acceleration);
   void abort_unstable(std::size_t p) const;
+  /**
+   * Stops the run on every rank if particle @p p of some rank (p = store.size(): none
+   * here) went wrong, naming the lowest id; the rank holding it says why.
+   */
+  void stop_if_any(std::size_t p, const std::function<void(std::size_t)> &stop) const;
+  /// Sets up the split over MPI ranks and keeps this rank's particles.
+  void distribute();
+  /// The particles the output reads: all of them, on rank 0 of a distributed run.
+  const ParticleStore<dim> &observed() const;
+  /// True on the rank that writes history.csv and summary.json.
+  bool writes_output() const { return ranks.rank() == 0; }
   /// What the scene sees of the run now.
   SceneState<dim> scene_state() const;
   /// Half-width of the central difference that gives prescribed accelerations.
@@ -126,6 +142,15 @@ private:
   ConditionalOStream pcout;
   RunParameters<dim> parameters;
   std::unique_ptr<Scene<dim>> scene;
+  Decomposition<dim> ranks;
+  /// Every rank's particles, gathered on rank 0 for output (distributed runs).
+  mutable ParticleStore<dim> gathered;
+  /// Particles in the whole run (on all ranks).
+  std::size_t n_particles = 0;
+  /// True once this rank keeps only its own particles and ghosts.
+  bool particles_split = false;
+  /// Their total mass at the start (kg).
+  double initial_mass = 0;
   std::string output_directory;
 
   BackgroundGrid<dim> background;

@@ -1,0 +1,155 @@
+#ifndef LME_MPM_DISTRIBUTED_DECOMPOSITION_H
+#define LME_MPM_DISTRIBUTED_DECOMPOSITION_H
+
+#include <deal.II/base/mpi.h>
+
+#include <lme_mpm/grid/background_grid.h>
+#include <lme_mpm/particles/particle_store.h>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lme_mpm
+{
+/**
+ * The split of a run over MPI ranks. p4est (deal.II's
+ * parallel::distributed::Triangulation over the background grid's cells) decides
+ * which rank owns which cell; a rank owns the particles in its cells and keeps
+ * copies (ghosts) of the other ranks' particles within a halo around them.
+ *
+ * The halo is as wide as everything one step of an owned particle depends on (its
+ * support, the supports of the particles that share its nodes, the fracture
+ * neighbourhood and crack band, the mass corrections' and contact's node-particle
+ * passes), so every rank runs the serial step on its owned particles and ghosts
+ * unchanged, and the owned particles come out of it as they would on one rank. The
+ * ghosts' own results near the halo's outer edge are wrong (their nodes miss
+ * particles) and are thrown away: after each step the owned particles that left
+ * their rank's cells move to their new owner, and the ghosts are sent afresh. One
+ * exchange of particles per step, no exchange of nodal values: the halo's extra work
+ * buys the fewest messages.
+ *
+ * Particles are sorted by cell and by id within a cell (ParticleStore::sort_by_cell),
+ * so a node sums the contributions of the same particles in the same order on any
+ * number of ranks: the owned particles' states agree bit for bit with a one-rank
+ * run (the test tests/mpi checks it).
+ */
+template <int dim>
+class Decomposition
+{
+public:
+  explicit Decomposition(MPI_Comm comm = MPI_COMM_WORLD);
+
+  unsigned int n_ranks() const { return size; }
+  unsigned int rank() const { return my_rank; }
+  bool distributed() const { return size > 1; }
+  MPI_Comm communicator() const { return comm; }
+
+  /**
+   * Partitions the cells of @p grid with p4est and sets up a halo of at least
+   * @p halo_width (m) around this rank's cells. One rank: everything is owned.
+   */
+  void partition(const BackgroundGrid<dim> &grid, double halo_width);
+
+  /// Owner rank of cell @p c (lexicographic index).
+  unsigned int owner(const unsigned int c) const { return size > 1 ? cell_owner[c] : 0; }
+  /**
+   * True if this rank reports node @p n: the owner of the cell whose lowest corner it
+   * is (the last cell for nodes on the upper grid faces). That rank holds every
+   * particle near the node, so the node's values are complete there.
+   */
+  bool owns_node(const unsigned int n) const
+  {
+    return node_owned.empty() || node_owned[n] != 0;
+  }
+  /// Per grid node: 1 where owns_node() (empty on one rank: every node).
+  const std::vector<std::uint8_t> &owned_nodes() const { return node_owned; }
+  /// The halo in cells per direction.
+  const std::array<unsigned int, dim> &halo_cells() const { return halo; }
+  /// Cells this rank owns, and cells in its halo.
+  std::size_t n_owned_cells() const { return owned_cell_count; }
+  std::size_t n_halo_cells() const { return halo_cell_count; }
+
+  /**
+   * From a store holding every particle (all ranks generated the same ones), keeps
+   * this rank's: those in its cells, and ghosts of those in its halo.
+   */
+  void distribute(ParticleStore<dim> &particles) const;
+
+  /**
+   * After a step: drops the ghosts, sends the owned particles that moved to another
+   * rank's cells to it, and sends every rank the owned particles in its halo.
+   * Particles outside the grid stay where they are (the next step reports them).
+   */
+  void exchange(ParticleStore<dim> &particles);
+
+  /**
+   * Every rank's owned particles, on rank 0, ordered by id (empty on the others):
+   * what the output of a distributed run reads.
+   */
+  void gather(const ParticleStore<dim> &particles, ParticleStore<dim> &all) const;
+
+  /**
+   * What a growing crack reads, the same on every rank: every rank's failed owned
+   * particles and the intact ones within @p reach of a failed one, in @p view,
+   * sorted by cell and id (the order one rank holds them in).
+   */
+  void gather_failed(const ParticleStore<dim> &particles, double reach,
+                     ParticleStore<dim> &view) const;
+
+  /// Owned (non-ghost) particles on this rank.
+  static std::size_t n_owned(const ParticleStore<dim> &particles);
+
+  // Reductions over the ranks (no-ops on one rank).
+  double sum(double v) const;
+  void sum(std::vector<double> &v) const;
+  double max(double v) const;
+  unsigned long long sum(unsigned long long v) const;
+  /// The smallest value over the ranks (and the rank that has it).
+  unsigned long long min(unsigned long long v) const;
+  /// Waits for every rank.
+  void barrier() const
+  {
+    if (size > 1)
+      MPI_Barrier(comm);
+  }
+  /// @p text of rank @p root on every rank.
+  std::string broadcast(const std::string &text, unsigned int root = 0) const;
+
+  /// Bytes one particle takes in a message (every field of the store).
+  static std::size_t bytes_per_particle();
+
+private:
+  /// Cells within reach[d] cells (along each d) of a cell flagged in @p mask.
+  std::vector<std::uint8_t> dilate(const std::vector<std::uint8_t> &mask,
+                                   const std::array<unsigned int, dim> &reach) const;
+  /// Cells per direction that cover a distance @p width from anywhere in a cell.
+  std::array<unsigned int, dim> cells_within(double width) const;
+  /// Sends @p out[r] to rank r; returns what the ranks sent here, in rank order.
+  std::vector<char> all_to_all(const std::vector<std::vector<char>> &out) const;
+  static void pack(const ParticleStore<dim> &particles, std::size_t p,
+                   std::vector<char> &buffer);
+  /// Appends the particles in @p buffer; their ghost flag is set to @p ghost.
+  static void unpack(const std::vector<char> &buffer, ParticleStore<dim> &particles,
+                     std::uint8_t ghost);
+  /// Keeps the particles with keep[p] != 0, in order.
+  static void compact(ParticleStore<dim> &particles,
+                      const std::vector<std::uint8_t> &keep);
+
+  MPI_Comm comm;
+  unsigned int size = 1, my_rank = 0;
+  const BackgroundGrid<dim> *grid = nullptr;
+  std::array<unsigned int, dim> halo{};
+  std::vector<unsigned int> cell_owner;
+  std::vector<std::uint8_t> node_owned;
+  /// Per cell: 1 if in this rank's halo (not owned).
+  std::vector<std::uint8_t> in_halo;
+  /// Per owned cell: the ranks whose halo holds it, as [offsets[c], offsets[c+1]).
+  std::vector<std::uint32_t> ghost_offsets;
+  std::vector<std::uint32_t> ghost_ranks;
+  std::size_t owned_cell_count = 0, halo_cell_count = 0;
+};
+} // namespace lme_mpm
+
+#endif
