@@ -5,6 +5,7 @@
 #include <boost/program_options.hpp>
 
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/solver/run_failed.h>
 #include <lme_mpm/solver/simulation.h>
 
 #include <iostream>
@@ -118,6 +119,18 @@ int main(int argc, char **argv)
       lme_mpm::run_parameter_file(vm["file"].as<std::string>(), overrides, std::cout,
                                   vm.count("resume") ? vm["resume"].as<std::string>()
                                                      : "");
+    }
+    catch (const lme_mpm::ExcRunFailed &e)
+    {
+      // Every rank ended the run together, output written: one report, no abort.
+      if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+      {
+        if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+          std::cerr << "lme-mpm: error: " << lme_mpm::input::concise_message(e)
+                    << std::endl;
+        return 1;
+      }
+      throw;
     }
     catch (const std::exception &e)
     {

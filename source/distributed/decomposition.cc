@@ -280,6 +280,9 @@ Decomposition<dim>::all_to_all(const std::vector<std::vector<char>> &out) const
     recv_at[r] = static_cast<int>(total);
     total += recv_counts[r];
   }
+  AssertThrow(total < std::size_t(std::numeric_limits<int>::max()),
+              ExcMessage("a rank receives over 2 GB of particles in one step: use more "
+                         "ranks"));
   std::vector<char> received(total);
   MPI_Alltoallv(send.data(), send_counts.data(), send_at.data(), MPI_CHAR,
                 received.data(), recv_counts.data(), recv_at.data(), MPI_CHAR, comm);
@@ -366,27 +369,18 @@ void Decomposition<dim>::gather(const ParticleStore<dim> &particles,
     at[r] = static_cast<int>(total);
     total += counts[r];
   }
+  AssertThrow(total < std::size_t(std::numeric_limits<int>::max()),
+              ExcMessage("the particles gathered for output exceed 2 GB: write less "
+                         "often, or run fewer particles per job"));
   std::vector<char> received(my_rank == 0 ? total : 0);
   MPI_Gatherv(mine.data(), count, MPI_CHAR, received.data(), counts.data(), at.data(),
               MPI_CHAR, 0, comm);
   if (my_rank != 0)
     return;
   unpack(received, all, 0);
-  // By id: the order of one rank's particles before any sort.
-  std::vector<std::size_t> order(all.size());
-  for (std::size_t p = 0; p < order.size(); ++p)
-    order[p] = p;
-  std::sort(order.begin(), order.end(),
-            [&](const std::size_t a, const std::size_t b)
-            { return all.id[a] < all.id[b]; });
-  all.for_each_field(
-      [&](auto &field)
-      {
-        std::decay_t<decltype(field)> sorted(order.size());
-        for (std::size_t q = 0; q < order.size(); ++q)
-          sorted[q] = field[order[q]];
-        field.swap(sorted);
-      });
+  // In the order one rank holds them at output time: by the cell of the last sort,
+  // then by id (so every sum over them is added as on one rank).
+  all.sort_by_cell(grid->n_cells());
   all.mark_reordered();
 }
 

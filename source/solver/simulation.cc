@@ -6,6 +6,7 @@
 #include <lme_mpm/base/plugin_libraries.h>
 #include <lme_mpm/geometry/particle_generator.h>
 #include <lme_mpm/solver/checkpoint.h>
+#include <lme_mpm/solver/run_failed.h>
 #include <lme_mpm/solver/simulation.h>
 
 #include <filesystem>
@@ -159,9 +160,11 @@ void Simulation<dim>::distribute()
   // One step of an owned particle reads: its support, the particles sharing those
   // nodes and theirs again (strains, then forces), and the fracture neighbourhood
   // and band; each consistent-mass correction pass adds a support there and back,
-  // in the predictor and in the corrector.
-  const double support = shape_function->support_radius(background);
-  const double halo = (4 + 4 * parameters.mass_corrections) * support + fracture.reach() +
+  // in the predictor and in the corrector, and the reactions' consistent mass
+  // M_C a one support more.
+  const double support  = shape_function->support_radius(background);
+  const unsigned int mc = parameters.mass_corrections;
+  const double halo     = (4 + 4 * mc + (mc > 0 ? 1 : 0)) * support + fracture.reach() +
                       contact.reach(support) + 2 * background.max_spacing();
   ranks.partition(background, halo);
   ranks.distribute(store);
@@ -209,11 +212,20 @@ void Simulation<dim>::stop_if_any(const std::size_t p,
   const unsigned long long lowest   = ranks.min(mine);
   if (lowest == none)
     return;
+  // The rank holding the particle words the diagnostic; every rank stops with it.
+  std::string message;
   if (mine == lowest)
-    stop(p);
-  AssertThrow(false, ExcRunAborted(step_count, t, static_cast<unsigned int>(lowest),
-                                   "another rank",
-                                   "see that rank's message (the run is unstable)"));
+    try
+    {
+      stop(p);
+    }
+    catch (const ExcRunAborted &e)
+    {
+      message = input::concise_message(e);
+    }
+  const auto holder = static_cast<unsigned int>(
+      ranks.min(mine == lowest ? ranks.rank() : ranks.n_ranks()));
+  AssertThrow(false, ExcRunStopped(ranks.broadcast(message, holder)));
 }
 
 template <int dim>
@@ -343,6 +355,9 @@ void Simulation<dim>::initialise_accelerations()
     constrain(nodes.acceleration);
   transfer.interpolate_accelerations();
   accelerations_initialised = true;
+  // The ghosts' a^0 near the halo's outer edge came from incomplete nodes: their
+  // owners' values replace them before the first step reads them.
+  ranks.exchange(store);
 }
 
 template <int dim>
@@ -889,6 +904,7 @@ std::map<std::string, double> Simulation<dim>::run()
     // not converge) ends the run with what it produced kept on disk.
     status                  = "aborted";
     const bool on_all_ranks = dynamic_cast<const ExcRunAborted *>(&e) != nullptr ||
+                              dynamic_cast<const ExcRunStopped *>(&e) != nullptr ||
                               dynamic_cast<const ExcStepLimit *>(&e) != nullptr;
     // An error on one rank only (the others wait in a collective call): the
     // program stops every rank (main.cc); writing output here would hang.
@@ -925,7 +941,8 @@ std::map<std::string, double> Simulation<dim>::run()
   // Past this point the output is on disk (on every rank); the caller reports the
   // failure.
   ranks.barrier();
-  AssertThrow(status == "completed", ExcMessage(message));
+  // Every rank ends alike; main() tells this from an error on one rank only.
+  AssertThrow(status == "completed", ExcRunFailed(message));
   timer.print_summary();
   if (pcout.is_active())
     stages.print(pcout.get_stream(), wall);

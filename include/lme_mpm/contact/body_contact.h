@@ -73,11 +73,15 @@ public:
   /**
    * How far one step's exchange reaches from a node through the particles (m), for
    * a distributed run's halo: the projected exchange passes node to particle to node
-   * once per sweep, and once more for its response scale and its final response.
+   * once per sweep, and once more for its response scale and its final response; the
+   * nodal exchange carries which pairs stuck from one step to the next, decided from
+   * nodes as far as a step reads (four support radii, and two for good measure).
    */
   double reach(const double support_radius) const
   {
-    return active() && projected ? 2.0 * (sweeps + 2) * support_radius : 0.0;
+    if (!active())
+      return 0.0;
+    return projected ? 2.0 * (sweeps + 2) * support_radius : 6.0 * support_radius;
   }
 
   /**

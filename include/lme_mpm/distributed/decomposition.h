@@ -85,8 +85,9 @@ public:
   void exchange(ParticleStore<dim> &particles);
 
   /**
-   * Every rank's owned particles, on rank 0, ordered by id (empty on the others):
-   * what the output of a distributed run reads.
+   * Every rank's owned particles, on rank 0, in the order one rank holds them (by the
+   * cell of the last sort, then id; empty on the others): what the output of a
+   * distributed run reads.
    */
   void gather(const ParticleStore<dim> &particles, ParticleStore<dim> &all) const;
 
