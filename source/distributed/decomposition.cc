@@ -313,40 +313,42 @@ void Decomposition<dim>::exchange(ParticleStore<dim> &particles)
 {
   if (size == 1)
     return;
+  constexpr unsigned int off_grid = ~0u;
+  const auto cell_of              = [&](const std::size_t p)
+  {
+    std::array<unsigned int, dim> ijk;
+    return grid->locate(particles.position[p], ijk) ? grid->cell_index(ijk) : off_grid;
+  };
   const std::size_t n = particles.size();
   std::vector<std::uint8_t> keep(n, 0);
+  // The cells of the particles kept, in their order after compact(): each particle
+  // is located once.
+  std::vector<unsigned int> cells;
   std::vector<std::vector<char>> out(size);
   for (std::size_t p = 0; p < n; ++p)
   {
     if (particles.ghost[p])
       continue;
-    std::array<unsigned int, dim> ijk;
-    if (!grid->locate(particles.position[p], ijk))
-    {
-      keep[p] = 1; // off the grid: the next step stops the run and names it
-      continue;
-    }
-    const unsigned int c = grid->cell_index(ijk);
-    if (cell_owner[c] == my_rank)
-      keep[p] = 1;
+    const unsigned int c = cell_of(p);
+    // Off the grid: kept, and the next step stops the run and names it.
+    if (c == off_grid || cell_owner[c] == my_rank)
+      keep[p] = 1, cells.push_back(c);
     else
       pack(particles, p, out[cell_owner[c]]);
   }
   compact(particles, keep);
   unpack(all_to_all(out), particles, 0);
+  for (std::size_t p = cells.size(); p < particles.size(); ++p)
+    cells.push_back(cell_of(p));
 
   // Ghosts afresh: every owned particle to the ranks whose halo holds its cell.
   for (auto &o : out)
     o.clear();
   for (std::size_t p = 0; p < particles.size(); ++p)
-  {
-    std::array<unsigned int, dim> ijk;
-    if (!grid->locate(particles.position[p], ijk))
-      continue;
-    const unsigned int c = grid->cell_index(ijk);
-    for (std::uint32_t k = ghost_offsets[c]; k < ghost_offsets[c + 1]; ++k)
-      pack(particles, p, out[ghost_ranks[k]]);
-  }
+    if (cells[p] != off_grid)
+      for (std::uint32_t k = ghost_offsets[cells[p]]; k < ghost_offsets[cells[p] + 1];
+           ++k)
+        pack(particles, p, out[ghost_ranks[k]]);
   unpack(all_to_all(out), particles, 1);
   particles.mark_reordered();
 }
