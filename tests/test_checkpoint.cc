@@ -123,8 +123,8 @@ TEST(Checkpoint, TooNarrowSlabsAreRedone)
 {
   // The slab width of the fused particle-to-grid pass is the supports' reach so
   // far; a chunk reaching further does not scatter, and the transfer is redone with
-  // the wider reach. A checkpoint whose stored reach (after magic, dim, size, dt,
-  // steps, t and step: bytes 44 and 48, below and above) is cut by one layer in one
+  // the wider reach. A checkpoint whose stored reach (after magic, dim, ranks, size,
+  // dt, steps, t and step: bytes 48 and 52, below and above) is cut by one layer in one
   // direction forces that path on the first resumed step. On the graded grid only
   // the supports of coarse cells next to the fine half reach the extra layer, so
   // the other chunks scatter before the redo, whose sums must be cleared: the result
@@ -143,11 +143,11 @@ TEST(Checkpoint, TooNarrowSlabsAreRedone)
     {
       std::fstream f(checkpoint, std::ios::in | std::ios::out | std::ios::binary);
       std::uint32_t reach[2] = {0, 0};
-      f.seekg(44);
+      f.seekg(48);
       f.read(reinterpret_cast<char *>(reach), sizeof reach);
       ASSERT_GT(reach[direction], 0u);
       --reach[direction];
-      f.seekp(44);
+      f.seekp(48);
       f.write(reinterpret_cast<const char *>(reach), sizeof reach);
     };
     run_and_resume(prm, with_settings(scene, {"Checkpoint/Every steps=100"}, b), b,

@@ -562,6 +562,62 @@ void for_lme_graded_cases(const Check &check)
   }
 }
 
+/**
+ * The bound a distributed run's halo is built from: every node a particle couples to
+ * lies within that node's node_support_radius(), itself within support_radius(), for
+ * every family on a uniform and a graded grid; and where the graded grid is fine LME's
+ * bound is the node's own (shorter than the grid-wide one).
+ */
+template <int dim>
+void check_node_support_bounds(const unsigned int seed)
+{
+  std::mt19937 rng(seed);
+  auto uniform = uniform_grid<dim>(0.1, 8);
+  auto graded  = graded_grid<dim>();
+  for (const auto *grid : {uniform.get(), graded.get()})
+    for (const auto &type : all_types)
+    {
+      if (type == "bspline" && grid == graded.get())
+        continue; // uniform grids only
+      SCOPED_TRACE(type + (grid == graded.get() ? " graded" : " uniform"));
+      auto sf =
+          make<dim>(type, *grid, type == "lme" ? lme_settings<dim>(1.8) : Settings{});
+      ParticleStore<dim> ps;
+      for (unsigned int i = 0; i < 40; ++i)
+        add_particle(ps, *grid, random_point(*grid, rng, 1e-3 * grid->min_spacing()));
+      const auto conn     = evaluate(*sf, ps);
+      const double global = sf->support_radius(*grid);
+      for (std::size_t p = 0; p < ps.size(); ++p)
+        for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+        {
+          const unsigned int node = conn.nodes[p * conn.stride + k];
+          std::array<unsigned int, dim> ijk;
+          for (unsigned int d = 0, rest = node; d < dim; ++d)
+            ijk[d] = rest % grid->n_nodes_in(d), rest /= grid->n_nodes_in(d);
+          const double r = sf->node_support_radius(*grid, ijk);
+          EXPECT_LE(grid->node_point(node).distance(ps.position[p]), r * (1 + 1e-12));
+          EXPECT_LE(r, global * (1 + 1e-12));
+        }
+      if (type == "lme" && grid == graded.get())
+      {
+        // A node among the 0.05 cells of direction 0 (index 6).
+        std::array<unsigned int, dim> fine;
+        fine.fill(6);
+        EXPECT_LT(sf->node_support_radius(*grid, fine), 0.75 * global);
+      }
+    }
+}
+
+TEST(ShapeFunctions, NodeSupportRadiiBoundTheSupports2D)
+{
+  check_node_support_bounds<2>(11);
+}
+
+TEST(ShapeFunctions, NodeSupportRadiiBoundTheSupports3D)
+{
+  check_node_support_bounds<3>(12);
+}
+
 TEST(ShapeFunctions, ConsistencyGraded2D)
 {
   auto grid = graded_grid<2>();

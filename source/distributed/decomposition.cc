@@ -26,6 +26,130 @@ void for_fields(const ParticleStore<dim> &particles, F &&f)
       });
 }
 
+/**
+ * Boxes of cells on a grid of n[d] cells per direction: tells whether a box holds a
+ * flagged cell (summed-area table) and flags the union of many boxes (a difference
+ * array), each in O(1) per box, so halos of any width cost O(cells) per pass.
+ */
+template <int dim>
+class CellBoxes
+{
+public:
+  /// Cells [lo[d], hi[d]) along each direction d.
+  struct Box
+  {
+    std::array<unsigned int, dim> lo, hi;
+  };
+
+  explicit CellBoxes(const std::array<unsigned int, dim> &n) : n(n)
+  {
+    std::size_t s = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      stride[d] = s, s *= n[d] + 1;
+    values.resize(s);
+  }
+
+  /// Makes any() answer for the cells flagged in @p mask (lexicographic order).
+  void tabulate(const std::vector<std::uint8_t> &mask)
+  {
+    std::fill(values.begin(), values.end(), 0);
+    for_cells([&](const std::size_t c, const std::array<unsigned int, dim> &ijk)
+              { values[corner(ijk, 1)] = mask[c]; });
+    prefix_sums();
+  }
+  bool any(const Box &b) const
+  {
+    std::int64_t count = 0;
+    for (unsigned int k = 0; k < (1u << dim); ++k)
+    {
+      std::size_t at = 0;
+      int sign       = 1;
+      for (unsigned int d = 0; d < dim; ++d)
+        if (k & (1u << d))
+          at += stride[d] * b.hi[d];
+        else
+          at += stride[d] * b.lo[d], sign = -sign;
+      count += sign * values[at];
+    }
+    return count != 0;
+  }
+
+  /// Starts flagging boxes.
+  void clear() { std::fill(values.begin(), values.end(), 0); }
+  void paint(const Box &b)
+  {
+    for (unsigned int k = 0; k < (1u << dim); ++k)
+    {
+      std::size_t at = 0;
+      int sign       = 1;
+      for (unsigned int d = 0; d < dim; ++d)
+        if (k & (1u << d))
+          at += stride[d] * b.hi[d], sign = -sign;
+        else
+          at += stride[d] * b.lo[d];
+      values[at] += sign;
+    }
+  }
+  /// Flags in @p mask (ORed) every cell inside a painted box.
+  void painted(std::vector<std::uint8_t> &mask)
+  {
+    prefix_sums();
+    for_cells([&](const std::size_t c, const std::array<unsigned int, dim> &ijk)
+              { mask[c] |= values[corner(ijk, 0)] > 0; });
+  }
+
+  template <class F>
+  void for_cells(F &&f) const
+  {
+    std::array<unsigned int, dim> ijk{};
+    std::size_t n_cells = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      n_cells *= n[d];
+    for (std::size_t c = 0; c < n_cells; ++c)
+    {
+      f(c, ijk);
+      for (unsigned int d = 0; d < dim && ++ijk[d] == n[d]; ++d)
+        ijk[d] = 0;
+    }
+  }
+
+private:
+  std::size_t corner(const std::array<unsigned int, dim> &ijk,
+                     const unsigned int shift) const
+  {
+    std::size_t at = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+      at += stride[d] * (ijk[d] + shift);
+    return at;
+  }
+  void prefix_sums()
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      for (std::size_t f = 0; f < values.size(); ++f)
+        if ((f / stride[d]) % (n[d] + 1) != 0)
+          values[f] += values[f - stride[d]];
+  }
+
+  std::array<unsigned int, dim> n;
+  std::array<std::size_t, dim> stride;
+  std::vector<std::int64_t> values;
+};
+
+/// Cells of @p c (node coordinates) within @p r of [a, b], as [lo, hi).
+inline void cells_near(const std::vector<double> &c, const double a, const double b,
+                       const double r, unsigned int &lo, unsigned int &hi)
+{
+  // A cell [c[m], c[m+1]] is near if c[m+1] >= a - r and c[m] <= b + r; a hair of
+  // slack keeps a boundary case in.
+  const double slack = 1e-12 * (c.back() - c.front());
+  const auto first   = std::lower_bound(c.begin(), c.end(), a - r - slack);
+  const auto last    = std::upper_bound(c.begin(), c.end(), b + r + slack);
+  const long n_cells = static_cast<long>(c.size()) - 1;
+  lo = static_cast<unsigned int>(std::max<long>(0, (first - c.begin()) - 1));
+  hi = static_cast<unsigned int>(std::min<long>(n_cells, last - c.begin()));
+  lo = std::min(lo, hi);
+}
+
 unsigned long long all_reduce(MPI_Comm comm, const unsigned int size,
                               const unsigned long long v, MPI_Op op)
 {
@@ -67,12 +191,15 @@ std::size_t Decomposition<dim>::n_owned(const ParticleStore<dim> &particles)
 }
 
 template <int dim>
-void Decomposition<dim>::partition(const BackgroundGrid<dim> &g, const double halo_width)
+void Decomposition<dim>::partition(const BackgroundGrid<dim> &g, const Reach &reach)
 {
   grid = &g;
   if (size == 1)
     return;
   const unsigned int n_cells = g.n_cells();
+  AssertThrow(reach.node_radius.size() == g.n_nodes() &&
+                  (reach.cell_radius.empty() || reach.cell_radius.size() == n_cells),
+              ExcInternalError());
 
   // p4est partitions the grid's cells (one coarse cell each, in the order deal.II
   // gives them for p4est, which keeps a rank's cells together).
@@ -102,12 +229,10 @@ void Decomposition<dim>::partition(const BackgroundGrid<dim> &g, const double ha
       AssertThrow(o >= 0, ExcInternalError());
   }
 
-  halo = cells_within(halo_width);
-
   std::vector<std::uint8_t> mine(n_cells);
   for (unsigned int c = 0; c < n_cells; ++c)
     mine[c] = cell_owner[c] == my_rank;
-  const auto around_mine = dilate(mine, halo);
+  const auto around_mine = reached(mine, reach);
   in_halo.assign(n_cells, 0);
   owned_cell_count = halo_cell_count = 0;
   for (unsigned int c = 0; c < n_cells; ++c)
@@ -125,7 +250,7 @@ void Decomposition<dim>::partition(const BackgroundGrid<dim> &g, const double ha
       std::vector<std::uint8_t> theirs(n_cells);
       for (unsigned int c = 0; c < n_cells; ++c)
         theirs[c] = cell_owner[c] == r;
-      const auto around = dilate(theirs, halo);
+      const auto around = reached(theirs, reach);
       for (unsigned int c = 0; c < n_cells; ++c)
         if (mine[c] && around[c])
           needs[c].push_back(r);
@@ -151,6 +276,94 @@ void Decomposition<dim>::partition(const BackgroundGrid<dim> &g, const double ha
     }
     node_owned[n] = cell_owner[g.cell_index(ijk)] == my_rank;
   }
+}
+
+template <int dim>
+std::vector<std::uint8_t>
+Decomposition<dim>::reached(const std::vector<std::uint8_t> &mask,
+                            const Reach &reach) const
+{
+  using Box = typename CellBoxes<dim>::Box;
+  std::array<unsigned int, dim> n;
+  for (unsigned int d = 0; d < dim; ++d)
+    n[d] = grid->n_cells_in(d);
+  CellBoxes<dim> boxes(n);
+  std::vector<std::uint8_t> out = mask;
+
+  // A node's box: the cells within its radius (a box holds the ball).
+  std::vector<Box> node_box;
+  if (reach.support_passes > 0)
+  {
+    node_box.resize(grid->n_nodes());
+    std::array<unsigned int, dim> ijk{};
+    for (unsigned int a = 0; a < grid->n_nodes(); ++a)
+    {
+      for (unsigned int d = 0; d < dim; ++d)
+      {
+        const double x = grid->coordinates(d)[ijk[d]];
+        cells_near(grid->coordinates(d), x, x, reach.node_radius[a], node_box[a].lo[d],
+                   node_box[a].hi[d]);
+      }
+      for (unsigned int d = 0; d < dim && ++ijk[d] == grid->n_nodes_in(d); ++d)
+        ijk[d] = 0;
+    }
+  }
+  for (unsigned int pass = 0; pass < reach.support_passes; ++pass)
+  {
+    // The nodes coupled to a flagged cell's particles, then their particles' cells.
+    boxes.tabulate(out);
+    std::vector<std::uint8_t> touched(node_box.size());
+    for (std::size_t a = 0; a < node_box.size(); ++a)
+      touched[a] = boxes.any(node_box[a]);
+    boxes.clear();
+    for (std::size_t a = 0; a < node_box.size(); ++a)
+      if (touched[a])
+        boxes.paint(node_box[a]);
+    boxes.painted(out);
+  }
+
+  if (!reach.cell_radius.empty())
+  {
+    std::vector<Box> cell_box(out.size());
+    boxes.for_cells(
+        [&](const std::size_t c, const std::array<unsigned int, dim> &ijk)
+        {
+          for (unsigned int d = 0; d < dim; ++d)
+            cells_near(grid->coordinates(d), grid->coordinates(d)[ijk[d]],
+                       grid->coordinates(d)[ijk[d] + 1], reach.cell_radius[c],
+                       cell_box[c].lo[d], cell_box[c].hi[d]);
+        });
+    // A cell reaching a flagged one, and every cell a flagged one reaches.
+    boxes.tabulate(out);
+    std::vector<std::uint8_t> next = out;
+    for (std::size_t c = 0; c < out.size(); ++c)
+      next[c] |= boxes.any(cell_box[c]);
+    boxes.clear();
+    for (std::size_t c = 0; c < out.size(); ++c)
+      if (out[c])
+        boxes.paint(cell_box[c]);
+    boxes.painted(next);
+    out.swap(next);
+  }
+
+  if (reach.margin_cells > 0)
+  {
+    const unsigned int k = reach.margin_cells;
+    boxes.clear();
+    boxes.for_cells(
+        [&](const std::size_t c, const std::array<unsigned int, dim> &ijk)
+        {
+          if (!out[c])
+            return;
+          Box b;
+          for (unsigned int d = 0; d < dim; ++d)
+            b.lo[d] = ijk[d] > k ? ijk[d] - k : 0,
+            b.hi[d] = std::min(n[d], ijk[d] + k + 1);
+          boxes.paint(b);
+        });
+    boxes.painted(out);
+  }
+  return out;
 }
 
 template <int dim>
@@ -212,12 +425,19 @@ template <int dim>
 void Decomposition<dim>::pack(const ParticleStore<dim> &particles, const std::size_t p,
                               std::vector<char> &buffer)
 {
+  // One resize per particle: the per-field ones cost more than the copies.
+  static const std::size_t total = bytes_per_particle();
+  char *at                       = nullptr;
+  {
+    const std::size_t end = buffer.size();
+    buffer.resize(end + total);
+    at = buffer.data() + end;
+  }
   for_fields(particles,
              [&](const auto &field, const std::size_t bytes)
              {
-               const std::size_t at = buffer.size();
-               buffer.resize(at + bytes);
-               std::memcpy(buffer.data() + at, &field[p], bytes);
+               std::memcpy(at, &field[p], bytes);
+               at += bytes;
              });
 }
 
@@ -453,6 +673,14 @@ template <int dim>
 unsigned long long Decomposition<dim>::min(const unsigned long long v) const
 {
   return all_reduce(comm, size, v, MPI_MIN);
+}
+
+template <int dim>
+std::vector<double> Decomposition<dim>::all_gather(const double v) const
+{
+  if (size == 1)
+    return {v};
+  return Utilities::MPI::all_gather(comm, v);
 }
 
 template <int dim>

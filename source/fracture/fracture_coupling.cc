@@ -103,12 +103,11 @@ void FractureCoupling<dim>::check_neighbourhood(
 }
 
 template <int dim>
-double FractureCoupling<dim>::reach() const
+double FractureCoupling<dim>::reach_at(const double h) const
 {
   if (!any_model)
     return 0;
-  const double h = grid->max_spacing();
-  double r       = 0;
+  double r = 0;
   for (const auto &f : models)
     if (f)
       r = std::max(r, f->epsilon(h));

@@ -50,8 +50,18 @@ bool ParticleStore<dim>::sort_by_cell(const unsigned int n_cells)
   std::vector<std::size_t> next(offsets.begin(), offsets.end() - 1);
   for (std::size_t p = 0; p < n; ++p)
     permutation[next[cell[p]]++] = static_cast<std::uint32_t>(p);
-  // Within a cell by id (a few particles per cell: insertion sort).
+  // Within a cell by id, stably: insertion sort for the few particles of a cell, a
+  // merge sort where many share one (the cells are not located yet, as in output
+  // gathered before the first step).
   for (unsigned int c = 0; c < n_cells; ++c)
+  {
+    if (offsets[c + 1] - offsets[c] > 32)
+    {
+      std::stable_sort(
+          permutation.begin() + offsets[c], permutation.begin() + offsets[c + 1],
+          [this](const std::uint32_t a, const std::uint32_t b) { return id[a] < id[b]; });
+      continue;
+    }
     for (std::size_t q = offsets[c] + 1; q < offsets[c + 1]; ++q)
     {
       const std::uint32_t moving = permutation[q];
@@ -60,6 +70,7 @@ bool ParticleStore<dim>::sort_by_cell(const unsigned int n_cells)
         permutation[r] = permutation[r - 1];
       permutation[r] = moving;
     }
+  }
 
   for_each_field(
       [this, n](auto &field)

@@ -27,6 +27,11 @@ public:
   {
     return this->largest_cell_diagonal(g); // the far corner of the particle's cell
   }
+  double node_support_radius(const BackgroundGrid<dim> &g,
+                             const std::array<unsigned int, dim> &node) const override
+  {
+    return 1.0 * this->cell_diagonal_near(g, node, 1);
+  }
 
   void compute(ParticleStore<dim> &particles, const std::size_t begin,
                const std::size_t end, Connectivity<dim> &conn) const override

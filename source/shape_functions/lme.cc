@@ -119,6 +119,16 @@ public:
   std::string name() const override { return "lme"; }
   unsigned int max_nodes_per_particle() const override { return max_nodes; }
   double support_radius(const BackgroundGrid<dim> &) const override { return R_max; }
+  double node_support_radius(const BackgroundGrid<dim> &,
+                             const std::array<unsigned int, dim> &node) const override
+  {
+    if (!graded)
+      return R_max;
+    double h = node_h[0][node[0]];
+    for (unsigned int d = 1; d < dim; ++d)
+      h = std::min(h, node_h[d][node[d]]);
+    return radius_over_h * h; // the node's support is the ball of radius R h_I
+  }
 
   void compute(ParticleStore<dim> &particles, const std::size_t begin,
                const std::size_t end, Connectivity<dim> &conn) const override

@@ -54,6 +54,14 @@ public:
       uniform = uniform && g.is_uniform(d);
     return (uniform ? 1.5 : 2.0) * this->largest_cell_diagonal(g);
   }
+  double node_support_radius(const BackgroundGrid<dim> &g,
+                             const std::array<unsigned int, dim> &node) const override
+  {
+    bool uniform = true;
+    for (unsigned int d = 0; d < dim; ++d)
+      uniform = uniform && g.is_uniform(d);
+    return (uniform ? 1.5 : 2.0) * this->cell_diagonal_near(g, node, 2);
+  }
 
   void compute(ParticleStore<dim> &particles, const std::size_t begin,
                const std::size_t end, Connectivity<dim> &conn) const override

@@ -6,6 +6,7 @@
 #include <lme_mpm/base/plugin_libraries.h>
 #include <lme_mpm/geometry/particle_generator.h>
 #include <lme_mpm/solver/checkpoint.h>
+#include <lme_mpm/solver/halo_reach.h>
 #include <lme_mpm/solver/run_failed.h>
 #include <lme_mpm/solver/simulation.h>
 
@@ -54,6 +55,7 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
   stage.accelerations       = stages.add("accelerations (corrector)");
   stage.to_particles        = stages.add("grid to particles");
   stage.contact             = stages.add("contact (bodies, crack faces)");
+  stage.exchange            = stages.add("MPI: particle exchange");
   parameters.parse_parameters(prm);
   {
     SceneContext<dim> context;
@@ -149,24 +151,10 @@ void Simulation<dim>::distribute()
   initial_mass = std::accumulate(store.mass.begin(), store.mass.end(), 0.0);
   if (!ranks.distributed())
     return;
-  AssertThrow(parameters.checkpoint_every_steps == 0,
-              ExcBadInput("Checkpoint/Every steps",
-                          "checkpoints are not written on more than one MPI rank yet: "
-                          "set 0, or run on one rank"));
-  AssertThrow(parameters.checkpoint_every_seconds == 0,
-              ExcBadInput("Checkpoint/Every seconds",
-                          "checkpoints are not written on more than one MPI rank yet: "
-                          "set 0, or run on one rank"));
-  // One step of an owned particle reads: its support, the particles sharing those
-  // nodes and theirs again (strains, then forces), and the fracture neighbourhood
-  // and band; each consistent-mass correction pass adds a support there and back,
-  // in the predictor and in the corrector, and the reactions' consistent mass
-  // M_C a one support more.
-  const double support  = shape_function->support_radius(background);
-  const unsigned int mc = parameters.mass_corrections;
-  const double halo     = (4 + 4 * mc + (mc > 0 ? 1 : 0)) * support + fracture.reach() +
-                      contact.reach(support) + 2 * background.max_spacing();
-  ranks.partition(background, halo);
+  // The halo holds what one step of an owned particle reads (solver/halo_reach.h).
+  const auto reach = halo_reach(background, *shape_function, fracture, contact,
+                                parameters.mass_corrections);
+  ranks.partition(background, reach);
   ranks.distribute(store);
   particles_split = true;
   transfer.set_reach_agreement(
@@ -180,9 +168,8 @@ void Simulation<dim>::distribute()
                                [this](std::vector<double> &v) { ranks.sum(v); });
   contact.set_distribution(&ranks.owned_nodes(),
                            [this](std::vector<double> &v) { ranks.sum(v); });
-  const auto &halo_cells = ranks.halo_cells();
-  pcout << "lme-mpm: " << ranks.n_ranks() << " MPI ranks; halo " << halo << " m ("
-        << halo_cells[0] << " cells); rank 0 owns " << ranks.n_owned_cells()
+  pcout << "lme-mpm: " << ranks.n_ranks() << " MPI ranks; " << reach.support_passes
+        << " support passes in the halo; rank 0 owns " << ranks.n_owned_cells()
         << " cells and keeps " << ranks.n_halo_cells() << " halo cells, "
         << Decomposition<dim>::n_owned(store) << " particles and "
         << store.size() - Decomposition<dim>::n_owned(store) << " ghosts" << std::endl;
@@ -321,7 +308,11 @@ void Simulation<dim>::step()
   t                     = t_new;
   ++step_count;
   stop_if_any(bad, [this](const std::size_t p) { abort_unstable(p); });
-  ranks.exchange(store);
+  if (ranks.distributed())
+  {
+    StageTimer::Scope scope(stages, stage.exchange);
+    ranks.exchange(store);
+  }
 }
 
 template <int dim>
@@ -577,20 +568,28 @@ void Simulation<dim>::serialize(Archive &ar)
 {
   // Everything a resumed run needs to continue bit for bit: the particles, the
   // driver's accumulators and the output series. Nodal fields are rebuilt every step.
-  std::uint32_t file_dim = dim, file_steps = n_steps;
-  std::uint64_t n = store.size();
+  // A distributed run writes one file per rank, each with that rank's particles
+  // (owned and ghosts) and its copy of the rest: it resumes on as many ranks, which
+  // p4est splits alike.
+  std::uint32_t file_dim = dim, file_steps = n_steps, file_ranks = ranks.n_ranks();
+  std::uint64_t n = n_particles;
   double file_dt  = dt;
-  ar(file_dim, n, file_dt, file_steps);
+  ar(file_dim, file_ranks, n, file_dt, file_steps);
   if (ar.loading())
   {
     std::ostringstream mismatch;
     mismatch << "the checkpoint holds a " << file_dim << "D run of " << n
              << " particles with dt = " << file_dt << " s; this parameter file gives "
-             << dim << "D, " << store.size() << " particles, dt = " << dt
+             << dim << "D, " << n_particles << " particles, dt = " << dt
              << " s: resume with the parameter file (and --set "
              << "values) of the run that wrote it";
-    AssertThrow(file_dim == dim && n == store.size() && file_dt == dt,
+    AssertThrow(file_dim == dim && n == n_particles && file_dt == dt,
                 ExcBadInput("--resume", mismatch.str()));
+    AssertThrow(file_ranks == ranks.n_ranks(),
+                ExcBadInput("--resume", "the checkpoint was written on " +
+                                            std::to_string(file_ranks) +
+                                            " MPI ranks; resume on as many (mpirun -np " +
+                                            std::to_string(file_ranks) + ")"));
   }
   ar(t, step_count);
   transfer.serialize(ar);
@@ -598,7 +597,8 @@ void Simulation<dim>::serialize(Archive &ar)
   ar(next_output_time);
   peak_force.serialize(ar);
   exact.serialize(ar);
-  std::uint64_t history_size = ar.loading() ? 0 : history.size();
+  // Only rank 0 writes history.csv.
+  std::uint64_t history_size = ar.loading() || !writes_output() ? 0 : history.size();
   ar(history_size);
   if (ar.loading())
     resumed_history_size = history_size;
@@ -628,19 +628,47 @@ void Simulation<dim>::serialize(Archive &ar)
 template <int dim>
 void Simulation<dim>::write_checkpoint()
 {
-  checkpoint::write(output_directory + "/checkpoint.bin",
+  checkpoint::write(checkpoint_file(output_directory),
                     [&](Archive &ar) { serialize(ar); });
+}
+
+template <int dim>
+std::string Simulation<dim>::checkpoint_file(const std::string &directory) const
+{
+  return directory + (ranks.distributed()
+                          ? "/checkpoint." + std::to_string(ranks.rank()) + ".bin"
+                          : "/checkpoint.bin");
 }
 
 template <int dim>
 void Simulation<dim>::resume_from(const std::string &directory)
 {
-  AssertThrow(!ranks.distributed(),
-              ExcBadInput("--resume", "resuming is not supported on more than one MPI "
-                                      "rank yet"));
   // Output goes on in the checkpoint's directory.
   setup_output(directory);
-  checkpoint::read(directory + "/checkpoint.bin", [&](Archive &ar) { serialize(ar); });
+  // Files of a run on another number of ranks: name the number to use. Every rank
+  // decides alike from the same files (one rank stopping alone would leave the
+  // others waiting).
+  const std::string file = checkpoint_file(directory);
+  unsigned int per_rank  = 0;
+  while (std::filesystem::exists(directory + "/checkpoint." + std::to_string(per_rank) +
+                                 ".bin"))
+    ++per_rank;
+  const bool one_rank           = std::filesystem::exists(directory + "/checkpoint.bin");
+  const unsigned int written_on = ranks.distributed() ? (per_rank > 0 ? per_rank
+                                                         : one_rank   ? 1
+                                                                      : 0)
+                                                      : (one_rank ? 1 : per_rank);
+  AssertThrow(written_on == 0 || written_on == ranks.n_ranks(),
+              ExcBadInput("--resume", "the checkpoint in '" + directory +
+                                          "' was written on " +
+                                          std::to_string(written_on) +
+                                          " MPI rank(s): resume on as many (mpirun -np " +
+                                          std::to_string(written_on) + ")"));
+  if (ranks.distributed())
+    AssertThrow(ranks.min(std::filesystem::exists(file) ? 1ull : 0ull) == 1,
+                ExcBadInput("--resume", "no checkpoint '" + file + "' on every rank"));
+  checkpoint::read(file, [&](Archive &ar) { serialize(ar); });
+  store.mark_reordered();
   AssertThrow(step_count <= n_steps,
               ExcBadInput("--resume", "the checkpoint is past this run's end time"));
   resumed                   = true;
@@ -822,10 +850,11 @@ void Simulation<dim>::advance_to_end(TimerOutput &timer,
     }
     const bool by_steps = parameters.checkpoint_every_steps > 0 &&
                           step_count % parameters.checkpoint_every_steps == 0;
-    const bool by_time =
-        parameters.checkpoint_every_seconds > 0 &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint)
-                .count() >= parameters.checkpoint_every_seconds;
+    // Every rank writes its part at the same step: the slowest rank's clock decides.
+    const bool by_time = parameters.checkpoint_every_seconds > 0 &&
+                         ranks.max(std::chrono::duration<double>(
+                                       std::chrono::steady_clock::now() - last_checkpoint)
+                                       .count()) >= parameters.checkpoint_every_seconds;
     if ((by_steps || by_time) && step_count < n_steps)
     {
       TimerOutput::Scope scope(timer, "checkpoint");
@@ -884,6 +913,24 @@ RunSummary Simulation<dim>::summarise(const double wall)
   }
   summary.values = results;
   return summary;
+}
+
+template <int dim>
+void Simulation<dim>::report_balance(const double wall) const
+{
+  if (!ranks.distributed())
+    return;
+  // What each rank holds at the end, and how long its exchanges took (waiting for
+  // the slowest rank included): tells an uneven split from a costly halo.
+  const std::size_t owned = Decomposition<dim>::n_owned(store);
+  const auto owned_all    = ranks.all_gather(static_cast<double>(owned));
+  const auto ghosts_all   = ranks.all_gather(static_cast<double>(store.size() - owned));
+  const auto exchange_all =
+      ranks.all_gather(stages.seconds().at("MPI: particle exchange"));
+  for (unsigned int r = 0; r < ranks.n_ranks(); ++r)
+    pcout << "rank " << r << ": " << owned_all[r] << " particles, " << ghosts_all[r]
+          << " ghosts; exchange " << exchange_all[r] << " s of " << wall << " s"
+          << std::endl;
 }
 
 template <int dim>
@@ -946,6 +993,7 @@ std::map<std::string, double> Simulation<dim>::run()
   timer.print_summary();
   if (pcout.is_active())
     stages.print(pcout.get_stream(), wall);
+  report_balance(wall);
   pcout << "Finished: " << step_count << " steps in " << wall << " s ("
         << results["particle_steps_per_second"] << " particle-steps/s); max energy drift "
         << energy.max_drift() << std::endl;

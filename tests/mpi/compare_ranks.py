@@ -21,8 +21,9 @@ import sys
 TOLERANCE = 1e-10
 
 
-def run(exe, prm, out, ranks, extra):
-    shutil.rmtree(out, ignore_errors=True)
+def mpirun(exe, prm, out, ranks, extra, tail=3000):
+    """Runs lme-mpm on @p ranks ranks, one thread each, writing to @p out; prints the
+    command and the end of its output and returns the finished process."""
     cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks), exe,
            prm, "--threads", "1", "--set", "Output/Directory=" + out] + extra
     env = dict(os.environ)
@@ -32,7 +33,13 @@ def run(exe, prm, out, ranks, extra):
     print(" ".join(cmd), flush=True)
     result = subprocess.run(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                             text=True, timeout=1200)
-    print(result.stdout[-3000:])
+    print(result.stdout[-tail:])
+    return result
+
+
+def run(exe, prm, out, ranks, extra):
+    shutil.rmtree(out, ignore_errors=True)
+    result = mpirun(exe, prm, out, ranks, extra)
     if result.returncode != 0:
         sys.exit(f"FAIL: the run on {ranks} rank(s) exited with {result.returncode}")
     with open(os.path.join(out, "summary.json")) as f:

@@ -47,10 +47,32 @@ public:
   MPI_Comm communicator() const { return comm; }
 
   /**
-   * Partitions the cells of @p grid with p4est and sets up a halo of at least
-   * @p halo_width (m) around this rank's cells. One rank: everything is owned.
+   * How far one step of a particle reads, in the lengths of the grid where it is:
+   * what partition() builds a halo from. On a graded grid the reach shrinks with the
+   * cells, so a halo in the fine cells is as many fine cells wide as a halo in the
+   * coarse cells is coarse ones.
    */
-  void partition(const BackgroundGrid<dim> &grid, double halo_width);
+  struct Reach
+  {
+    /// Per grid node: how far from it the particles it couples to lie (m).
+    std::vector<double> node_radius;
+    /// Particle-node-particle passes: each reads the nodes within node_radius of the
+    /// particles read so far, then the particles within node_radius of those nodes.
+    unsigned int support_passes = 0;
+    /// Per cell (empty: none): how far a particle there reads other particles
+    /// directly (fracture neighbourhood and crack band), m; the farther of the two
+    /// particles' reaches counts.
+    std::vector<double> cell_radius;
+    /// Cells added all round: particles crossing cells within a step.
+    unsigned int margin_cells = 2;
+  };
+
+  /**
+   * Partitions the cells of @p grid with p4est and sets up the halo @p reach asks
+   * for around this rank's cells: support passes first, then the direct particle
+   * reach, then the margin. One rank: everything is owned.
+   */
+  void partition(const BackgroundGrid<dim> &grid, const Reach &reach);
 
   /// Owner rank of cell @p c (lexicographic index).
   unsigned int owner(const unsigned int c) const { return size > 1 ? cell_owner[c] : 0; }
@@ -65,8 +87,6 @@ public:
   }
   /// Per grid node: 1 where owns_node() (empty on one rank: every node).
   const std::vector<std::uint8_t> &owned_nodes() const { return node_owned; }
-  /// The halo in cells per direction.
-  const std::array<unsigned int, dim> &halo_cells() const { return halo; }
   /// Cells this rank owns, and cells in its halo.
   std::size_t n_owned_cells() const { return owned_cell_count; }
   std::size_t n_halo_cells() const { return halo_cell_count; }
@@ -115,6 +135,8 @@ public:
     if (size > 1)
       MPI_Barrier(comm);
   }
+  /// Every rank's @p v, in rank order, on every rank.
+  std::vector<double> all_gather(double v) const;
   /// @p text of rank @p root on every rank.
   std::string broadcast(const std::string &text, unsigned int root = 0) const;
 
@@ -125,6 +147,9 @@ private:
   /// Cells within reach[d] cells (along each d) of a cell flagged in @p mask.
   std::vector<std::uint8_t> dilate(const std::vector<std::uint8_t> &mask,
                                    const std::array<unsigned int, dim> &reach) const;
+  /// The cells @p reach reads from the cells flagged in @p mask.
+  std::vector<std::uint8_t> reached(const std::vector<std::uint8_t> &mask,
+                                    const Reach &reach) const;
   /// Cells per direction that cover a distance @p width from anywhere in a cell.
   std::array<unsigned int, dim> cells_within(double width) const;
   /// Sends @p out[r] to rank r; returns what the ranks sent here, in rank order.
@@ -141,7 +166,6 @@ private:
   MPI_Comm comm;
   unsigned int size = 1, my_rank = 0;
   const BackgroundGrid<dim> *grid = nullptr;
-  std::array<unsigned int, dim> halo{};
   std::vector<unsigned int> cell_owner;
   std::vector<std::uint8_t> node_owned;
   /// Per cell: 1 if in this rank's halo (not owned).

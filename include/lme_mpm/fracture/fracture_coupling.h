@@ -55,7 +55,9 @@ public:
    * How far one fracture update reaches from a particle: the widest neighbourhood
    * and crack band (m), for the width of a distributed run's halo.
    */
-  double reach() const;
+  double reach() const { return reach_at(grid->max_spacing()); }
+  /// The same where the particles' spacing h (a cell's shortest side) is @p h.
+  double reach_at(double h) const;
 
   /// True if any material fractures.
   bool active() const { return any_model; }

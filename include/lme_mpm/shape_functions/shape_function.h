@@ -9,6 +9,7 @@
 #include <lme_mpm/particles/particle_store.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -78,6 +79,41 @@ public:
   {
     const double width = std::ceil(std::pow(max_nodes_per_particle(), 1.0 / dim) - 1e-9);
     return width * largest_cell_diagonal(grid);
+  }
+
+  /**
+   * Upper bound of the distance between grid node @p node (its index along each
+   * direction) and a particle it couples to (m). Where the grid is graded this is
+   * shorter than support_radius() in the fine cells, and a distributed run's halo
+   * follows it; the default is support_radius() everywhere.
+   */
+  virtual double node_support_radius(const BackgroundGrid<dim> &grid,
+                                     const std::array<unsigned int, dim> &node) const
+  {
+    (void)node;
+    return support_radius(grid);
+  }
+
+  /**
+   * Diagonal of a cell with the largest spacing of each direction among the cells
+   * within @p k cells of @p node: how far supports @p k cells wide reach from it.
+   */
+  static double cell_diagonal_near(const BackgroundGrid<dim> &grid,
+                                   const std::array<unsigned int, dim> &node,
+                                   const unsigned int k)
+  {
+    double d2 = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+    {
+      const unsigned int n  = grid.n_cells_in(d);
+      const unsigned int lo = node[d] > k ? node[d] - k : 0,
+                         hi = std::min(n, node[d] + k);
+      double h              = 0;
+      for (unsigned int i = lo; i < hi; ++i)
+        h = std::max(h, grid.spacing(d, i));
+      d2 += h * h;
+    }
+    return std::sqrt(d2);
   }
 
   /// Diagonal of a cell with the largest spacing of each direction.

@@ -114,6 +114,10 @@ private:
   void stop_if_any(std::size_t p, const std::function<void(std::size_t)> &stop) const;
   /// Sets up the split over MPI ranks and keeps this rank's particles.
   void distribute();
+  /// Where this rank's checkpoint goes in @p directory.
+  std::string checkpoint_file(const std::string &directory) const;
+  /// Distributed runs: each rank's particles, ghosts and exchange time.
+  void report_balance(double wall) const;
   /// The particles the output reads: all of them, on rank 0 of a distributed run.
   const ParticleStore<dim> &observed() const;
   /// True on the rank that writes history.csv and summary.json.
@@ -171,7 +175,7 @@ private:
   struct StageIds
   {
     unsigned int crack_growth, locate, to_grid, rates, stresses_and_forces, stresses,
-        fracture, forces, accelerations, to_particles, contact;
+        fracture, forces, accelerations, to_particles, contact, exchange;
   } stage{};
 
   ExplicitNewmark newmark;
