@@ -150,6 +150,18 @@ inline void cells_near(const std::vector<double> &c, const double a, const doubl
   lo = std::min(lo, hi);
 }
 
+/// Where each rank's piece starts in a message of pieces @p counts long; the total.
+std::size_t displacements(const std::vector<int> &counts, std::vector<int> &at)
+{
+  std::size_t total = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r)
+  {
+    at[r] = static_cast<int>(total);
+    total += counts[r];
+  }
+  return total;
+}
+
 unsigned long long all_reduce(MPI_Comm comm, const unsigned int size,
                               const unsigned long long v, MPI_Op op)
 {
@@ -348,20 +360,9 @@ Decomposition<dim>::reached(const std::vector<std::uint8_t> &mask,
 
   if (reach.margin_cells > 0)
   {
-    const unsigned int k = reach.margin_cells;
-    boxes.clear();
-    boxes.for_cells(
-        [&](const std::size_t c, const std::array<unsigned int, dim> &ijk)
-        {
-          if (!out[c])
-            return;
-          Box b;
-          for (unsigned int d = 0; d < dim; ++d)
-            b.lo[d] = ijk[d] > k ? ijk[d] - k : 0,
-            b.hi[d] = std::min(n[d], ijk[d] + k + 1);
-          boxes.paint(b);
-        });
-    boxes.painted(out);
+    std::array<unsigned int, dim> k;
+    k.fill(reach.margin_cells);
+    out = dilate(out, k);
   }
   return out;
 }
@@ -388,36 +389,23 @@ std::vector<std::uint8_t>
 Decomposition<dim>::dilate(const std::vector<std::uint8_t> &mask,
                            const std::array<unsigned int, dim> &reach) const
 {
-  // Separable: along each direction in turn, a cell is marked if a marked cell lies
-  // within halo[d] of it on its line (prefix counts per line).
-  std::vector<std::uint8_t> out = mask;
-  std::array<unsigned int, dim> stride, n;
+  std::array<unsigned int, dim> n;
   for (unsigned int d = 0; d < dim; ++d)
-  {
-    n[d]      = grid->n_cells_in(d);
-    stride[d] = d == 0 ? 1 : stride[d - 1] * n[d - 1];
-  }
-  std::vector<unsigned int> prefix;
-  for (unsigned int d = 0; d < dim; ++d)
-  {
-    const std::vector<std::uint8_t> in = out;
-    const unsigned int len = n[d], k = reach[d];
-    prefix.resize(len + 1);
-    for (unsigned int start = 0; start < in.size(); ++start)
-    {
-      // Line starts: cells whose index along d is 0.
-      if ((start / stride[d]) % len != 0)
-        continue;
-      prefix[0] = 0;
-      for (unsigned int i = 0; i < len; ++i)
-        prefix[i + 1] = prefix[i] + in[start + i * stride[d]];
-      for (unsigned int i = 0; i < len; ++i)
+    n[d] = grid->n_cells_in(d);
+  CellBoxes<dim> boxes(n);
+  boxes.for_cells(
+      [&](const std::size_t c, const std::array<unsigned int, dim> &ijk)
       {
-        const unsigned int lo = i > k ? i - k : 0, hi = std::min(len, i + k + 1);
-        out[start + i * stride[d]] = prefix[hi] > prefix[lo];
-      }
-    }
-  }
+        if (!mask[c])
+          return;
+        typename CellBoxes<dim>::Box b;
+        for (unsigned int d = 0; d < dim; ++d)
+          b.lo[d] = ijk[d] > reach[d] ? ijk[d] - reach[d] : 0,
+          b.hi[d] = std::min(n[d], ijk[d] + reach[d] + 1);
+        boxes.paint(b);
+      });
+  std::vector<std::uint8_t> out = mask;
+  boxes.painted(out);
   return out;
 }
 
@@ -494,12 +482,7 @@ Decomposition<dim>::all_to_all(const std::vector<std::vector<char>> &out) const
     send.insert(send.end(), out[r].begin(), out[r].end());
   }
   MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm);
-  std::size_t total = 0;
-  for (unsigned int r = 0; r < size; ++r)
-  {
-    recv_at[r] = static_cast<int>(total);
-    total += recv_counts[r];
-  }
+  const std::size_t total = displacements(recv_counts, recv_at);
   AssertThrow(total < std::size_t(std::numeric_limits<int>::max()),
               ExcMessage("a rank receives over 2 GB of particles in one step: use more "
                          "ranks"));
@@ -585,12 +568,7 @@ void Decomposition<dim>::gather(const ParticleStore<dim> &particles,
   int count = static_cast<int>(mine.size());
   std::vector<int> counts(size), at(size);
   MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
-  std::size_t total = 0;
-  for (unsigned int r = 0; r < size; ++r)
-  {
-    at[r] = static_cast<int>(total);
-    total += counts[r];
-  }
+  const std::size_t total = displacements(counts, at);
   AssertThrow(total < std::size_t(std::numeric_limits<int>::max()),
               ExcMessage("the particles gathered for output exceed 2 GB: write less "
                          "often, or run fewer particles per job"));
