@@ -46,7 +46,7 @@ def centre_factor(rows):
 
 def run(binary, out, shape, h, strip):
     cmd = [binary, "prm/brazilian.prm", "--set", "Output/Directory=" + out,
-           "--set", "Scene/Strip width=" + strip,
+           "--set", "Scene/brazilian/Strip width=" + strip,
            "--set", "Output/Verbosity=0", "--set", "Shape functions/Type=" + shape,
            "--set", "Grid/Cell size=" + h]
     subprocess.run(cmd, check=True)

@@ -15,7 +15,8 @@
 #include <lme_mpm/fracture/neighbourhood.h>
 #include <lme_mpm/materials/linear_elastic.h>
 #include <lme_mpm/shape_functions/shape_function.h>
-#include <lme_mpm/solver/simulation.h>
+#include <lme_mpm/simulation/run.h>
+#include <lme_mpm/simulation/simulation.h>
 
 #include <cmath>
 #include <random>

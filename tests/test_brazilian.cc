@@ -3,7 +3,7 @@
 // the loaded diameter, the scene's early stop, and its input checks.
 #include <gtest/gtest.h>
 
-#include <lme_mpm/solver/run.h>
+#include <lme_mpm/simulation/run.h>
 
 #include "test_helpers.h"
 
@@ -54,7 +54,7 @@ TEST(Brazilian, ElasticCentreStressesMatchHondrosAtTwoStripWidths)
     const auto r =
         lme_mpm_test::run_scene("brazilian.prm", tag,
                                 {"Material 1/Fracture/Model=none", "Time/End time=5e-4",
-                                 "Scene/Strip width=" + std::to_string(b)});
+                                 "Scene/brazilian/Strip width=" + std::to_string(b)});
     // Hondros (reference/README.md section 3): with sin(alpha) = b / D, the centre
     // stresses per 2 P / (pi D t) are 2 cos(alpha) - alpha / sin(alpha) across the
     // loaded diameter and -(D / b)(sin(2 alpha) + alpha) along it.
@@ -122,32 +122,41 @@ TEST(Brazilian, BadInputNamesTheEntry)
   const std::string dir = lme_mpm_test::scratch("brazilian_bad");
   const auto error      = [&](const std::vector<std::string> &o)
   { return lme_mpm_test::run_error(prm, o, dir); };
-  EXPECT_NE(error({"Scene/Strip width=0.15"}).find("Scene/Strip width"),
+  EXPECT_NE(
+      error({"Scene/brazilian/Strip width=0.15"}).find("Scene/brazilian/Strip width"),
+      std::string::npos);
+  EXPECT_NE(error({"Scene/brazilian/Diameter=-1"}).find("Scene/brazilian/Diameter"),
             std::string::npos);
-  EXPECT_NE(error({"Scene/Diameter=-1"}).find("Scene/Diameter"), std::string::npos);
-  EXPECT_NE(error({"Scene/Loading velocity=0"}).find("Scene/Loading velocity"),
+  EXPECT_NE(error({"Scene/brazilian/Loading velocity=0"})
+                .find("Scene/brazilian/Loading velocity"),
             std::string::npos);
-  EXPECT_NE(error({"Scene/Stop at load fraction=1"}).find("Scene/Stop at load fraction"),
+  EXPECT_NE(error({"Scene/brazilian/Stop at load fraction=1"})
+                .find("Scene/brazilian/Stop at load fraction"),
             std::string::npos);
-  EXPECT_NE(error({"Scene/Centre=0.1"}).find("Scene/Centre"), std::string::npos);
-  EXPECT_NE(error({"Scene/Elastic zone depth=-0.01"}).find("Scene/Elastic zone depth"),
+  EXPECT_NE(error({"Scene/brazilian/Centre=0.1"}).find("Scene/brazilian/Centre"),
+            std::string::npos);
+  EXPECT_NE(error({"Scene/brazilian/Elastic zone depth=-0.01"})
+                .find("Scene/brazilian/Elastic zone depth"),
             std::string::npos);
   EXPECT_NE(error({"Body 1/Material zones=2: disc(0.1, 0.1, 0.01)"})
                 .find("Body 1/Material zones"),
             std::string::npos);
-  EXPECT_NE(error({"Scene/Elastic zone material=3"}).find("Scene/Elastic zone material"),
+  EXPECT_NE(error({"Scene/brazilian/Elastic zone material=3"})
+                .find("Scene/brazilian/Elastic zone material"),
             std::string::npos);
-  EXPECT_NE(error({"Scene/Top strip=upper"}).find("Scene/Top strip"), std::string::npos);
+  EXPECT_NE(error({"Scene/brazilian/Top strip=upper"}).find("Scene/brazilian/Top strip"),
+            std::string::npos);
   // The scene writes the bodies' shapes: one given in the file is refused, not ignored.
   const std::string shape = error({"Body 1/Shape=disc(0.1, 0.1, 0.07)"});
   EXPECT_NE(shape.find("Body 1/Shape"), std::string::npos) << shape;
-  EXPECT_NE(shape.find("Scene/Disc"), std::string::npos) << shape;
+  EXPECT_NE(shape.find("Scene/brazilian/Disc"), std::string::npos) << shape;
   EXPECT_NE(error({"Body 2/Prescribed velocity/Function expression=0; -1"})
                 .find("Body 2/Prescribed velocity"),
             std::string::npos);
   // The disc and strips must fit the grid.
-  EXPECT_NE(error({"Scene/Centre=0.05, 0.1"}).find("outside the background grid"),
-            std::string::npos);
+  EXPECT_NE(
+      error({"Scene/brazilian/Centre=0.05, 0.1"}).find("outside the background grid"),
+      std::string::npos);
 }
 
 TEST(MaterialZones, AWeakZoneInsideOneBodyIsWhereTheBarBreaks)

@@ -3,8 +3,8 @@
 // every shape function, momentum to round-off, resumed runs, and the input checks.
 #include <gtest/gtest.h>
 
-#include <lme_mpm/solver/run.h>
-#include <lme_mpm/solver/simulation.h>
+#include <lme_mpm/simulation/run.h>
+#include <lme_mpm/simulation/simulation.h>
 
 #include "test_helpers.h"
 
@@ -75,7 +75,7 @@ TEST(Contact, BlockSticksBelowTheFrictionAngle)
   // unloads the contact it creeps, up to 4.6 % of the frictionless distance).
   const auto r = lme_mpm_test::run_scene(
       "sliding_block.prm", "stick",
-      {"Scene/Incline angle=15", "Output/Write particle files=false"});
+      {"Scene/sliding block/Incline angle=15", "Output/Write particle files=false"});
   const double frictionless = inclined_plane(15, 0, 0.5);
   std::cout << "sliding block at 15 degrees: " << r.at("sliding_distance")
             << " m; frictionless " << frictionless << " m" << std::endl;
@@ -215,7 +215,7 @@ TEST(Contact, ResumedSlidingRunEndsBitwiseIdentical)
 {
   const std::vector<std::string> settings = {"Time/End time=0.1", "Output/Verbosity=0",
                                              "Output/Write particle files=false",
-                                             "Scene/Incline angle=15"};
+                                             "Scene/sliding block/Incline angle=15"};
   const std::string prm                   = lme_mpm_test::scene("sliding_block.prm");
   const std::string a                     = lme_mpm_test::scratch("contact_ckpt_a"),
                     b                     = lme_mpm_test::scratch("contact_ckpt_b");
@@ -249,9 +249,12 @@ TEST(Contact, BadInputNamesTheEntry)
   EXPECT_NE(error({"Body 2/Prescribed velocity/Function expression=1/0; 0"})
                 .find("Body 2/Prescribed velocity"),
             std::string::npos);
-  EXPECT_NE(error({"Scene/Incline angle=90"}).find("Scene/Incline angle"),
+  EXPECT_NE(error({"Scene/sliding block/Incline angle=90"})
+                .find("Scene/sliding block/Incline angle"),
             std::string::npos);
-  EXPECT_NE(error({"Scene/Block=nothing"}).find("Scene/Block"), std::string::npos);
+  EXPECT_NE(
+      error({"Scene/sliding block/Block=nothing"}).find("Scene/sliding block/Block"),
+      std::string::npos);
   EXPECT_NE(error({"Problem/Body force=0, -9.81"}).find("Problem/Body force"),
             std::string::npos);
   EXPECT_NE(error({"Contact/Contact volume fraction=0"}).find("Contact volume fraction"),

@@ -18,7 +18,7 @@ namespace
 std::vector<std::string> coarse()
 {
   return {"Grid/Step sizes x=92*0.005", "Grid/Step sizes y=37*0.005",
-          "Scene/Notch width=0.005", "Time/End time=1.5e-4"};
+          "Scene/drop weight/Notch width=0.005", "Time/End time=1.5e-4"};
 }
 } // namespace
 
@@ -145,26 +145,34 @@ TEST(DropWeight, BadInputNamesTheEntry)
   const std::string dir = lme_mpm_test::scratch("drop_weight_bad");
   const auto error      = [&](const std::vector<std::string> &o)
   { return lme_mpm_test::run_error(prm, o, dir); };
-  EXPECT_NE(error({"Scene/Notch depth=0.1"}).find("Scene/Notch depth"),
+  EXPECT_NE(
+      error({"Scene/drop weight/Notch depth=0.1"}).find("Scene/drop weight/Notch depth"),
+      std::string::npos);
+  EXPECT_NE(error({"Scene/drop weight/Span=0.5"}).find("Scene/drop weight/Span"),
             std::string::npos);
-  EXPECT_NE(error({"Scene/Span=0.5"}).find("Scene/Span"), std::string::npos);
-  EXPECT_NE(error({"Scene/Impact velocity=0"}).find("Scene/Impact velocity"),
+  EXPECT_NE(error({"Scene/drop weight/Impact velocity=0"})
+                .find("Scene/drop weight/Impact velocity"),
             std::string::npos);
-  EXPECT_NE(error({"Scene/Hammer mass=-1"}).find("Scene/Hammer mass"), std::string::npos);
-  EXPECT_NE(error({"Scene/Supports=left"}).find("Scene/Supports"), std::string::npos);
-  EXPECT_NE(error({"Scene/Hammer=striker"}).find("Scene/Hammer"), std::string::npos);
+  EXPECT_NE(
+      error({"Scene/drop weight/Hammer mass=-1"}).find("Scene/drop weight/Hammer mass"),
+      std::string::npos);
+  EXPECT_NE(error({"Scene/drop weight/Supports=left"}).find("Scene/drop weight/Supports"),
+            std::string::npos);
+  EXPECT_NE(error({"Scene/drop weight/Hammer=striker"}).find("Scene/drop weight/Hammer"),
+            std::string::npos);
   // On one velocity field the supports are node sets: bodies of their names are
   // refused, naming the entry and what it needs.
   const std::string field = error({"Contact/Type=none"});
-  EXPECT_NE(field.find("Scene/Supports"), std::string::npos) << field;
+  EXPECT_NE(field.find("Scene/drop weight/Supports"), std::string::npos) << field;
   EXPECT_NE(field.find("Contact/Type = none"), std::string::npos) << field;
   // The hammer's density is the scene's: a density in the file is refused, naming it.
   const std::string density = error({"Material 2/Density=7800"});
   EXPECT_NE(density.find("Material 2/Density"), std::string::npos) << density;
-  EXPECT_NE(density.find("Scene/Hammer mass"), std::string::npos) << density;
+  EXPECT_NE(density.find("Scene/drop weight/Hammer mass"), std::string::npos) << density;
   const std::string velocity =
       error({"Body 2/Initial velocity/Function expression=0; -1"});
-  EXPECT_NE(velocity.find("Scene/Impact velocity"), std::string::npos) << velocity;
+  EXPECT_NE(velocity.find("Scene/drop weight/Impact velocity"), std::string::npos)
+      << velocity;
 }
 
 TEST(DropWeight, NeighbourhoodCheckLooksOnlyAtTheCellsTheBeamStartsIn)

@@ -7,9 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <lme_mpm/base/input.h>
-#include <lme_mpm/solver/run.h>
+#include <lme_mpm/simulation/run.h>
+#include <lme_mpm/simulation/simulation.h>
 #include <lme_mpm/solver/run_parameters.h>
-#include <lme_mpm/solver/simulation.h>
 
 #include <nlohmann/json.hpp>
 

@@ -2,7 +2,8 @@
 #define LME_MPM_TESTS_TEST_HELPERS_H
 
 #include <lme_mpm/base/input.h>
-#include <lme_mpm/solver/simulation.h>
+#include <lme_mpm/simulation/run.h>
+#include <lme_mpm/simulation/simulation.h>
 
 #include <unistd.h>
 

@@ -18,9 +18,9 @@ namespace
 /// to 3 mm to remove two columns of them) and the loading roller at 20 mm/s.
 std::vector<std::string> coarse(const std::string &angle)
 {
-  return {"Grid/Cell size=0.003", "Scene/Notch width=0.003",
-          "Scene/Loading velocity=0.02", "Time/End time=0.006",
-          "Scene/Notch angle=" + angle};
+  return {"Grid/Cell size=0.003", "Scene/semicircular bending/Notch width=0.003",
+          "Scene/semicircular bending/Loading velocity=0.02", "Time/End time=0.006",
+          "Scene/semicircular bending/Notch angle=" + angle};
 }
 } // namespace
 
@@ -32,10 +32,10 @@ TEST(SemicircularBending, VerticalNotchCrackRunsUpTheSymmetryLine)
   // The run goes on to 15 ms (no stop on the load): the band loses its traction as a
   // whole, so the load falls below 0.3 of its peak while the last fifth of the
   // ligament, under the roller's compression, still holds; the crack cuts it later.
-  const auto r =
-      lme_mpm_test::run_scene("semicircular_bending.prm", tag,
-                              {"Scene/Loading velocity=0.02", "Time/End time=0.015",
-                               "Scene/Stop at load fraction=0"});
+  const auto r = lme_mpm_test::run_scene(
+      "semicircular_bending.prm", tag,
+      {"Scene/semicircular bending/Loading velocity=0.02", "Time/End time=0.015",
+       "Scene/semicircular bending/Stop at load fraction=0"});
   std::cout << "peak load " << r.at("peak_force") << " N, supports "
             << r.at("peak_contact_force_left") << " / "
             << r.at("peak_contact_force_right") << " N, softened ligament share "
@@ -125,23 +125,35 @@ TEST(SemicircularBending, BadInputNamesTheEntry)
   const std::string dir = lme_mpm_test::scratch("scb_bad");
   const auto error      = [&](const std::vector<std::string> &o)
   { return lme_mpm_test::run_error(prm, o, dir); };
-  EXPECT_NE(error({"Scene/Notch angle=90"}).find("Scene/Notch angle"), std::string::npos);
-  EXPECT_NE(error({"Scene/Notch angle=-5"}).find("Scene/Notch angle"), std::string::npos);
-  EXPECT_NE(error({"Scene/Notch length=0.05"}).find("Scene/Notch length"),
+  EXPECT_NE(error({"Scene/semicircular bending/Notch angle=90"})
+                .find("Scene/semicircular bending/Notch angle"),
             std::string::npos);
-  EXPECT_NE(error({"Scene/Span=0.1"}).find("Scene/Span"), std::string::npos);
-  EXPECT_NE(error({"Scene/Loading velocity=0"}).find("Scene/Loading velocity"),
+  EXPECT_NE(error({"Scene/semicircular bending/Notch angle=-5"})
+                .find("Scene/semicircular bending/Notch angle"),
             std::string::npos);
-  EXPECT_NE(error({"Scene/Support rollers=left"}).find("Scene/Support rollers"),
+  EXPECT_NE(error({"Scene/semicircular bending/Notch length=0.05"})
+                .find("Scene/semicircular bending/Notch length"),
             std::string::npos);
-  EXPECT_NE(error({"Scene/Loading roller=top"}).find("Scene/Loading roller"),
+  EXPECT_NE(error({"Scene/semicircular bending/Span=0.1"})
+                .find("Scene/semicircular bending/Span"),
             std::string::npos);
-  EXPECT_NE(error({"Scene/Notch crack overhang=0"}).find("Scene/Notch crack overhang"),
+  EXPECT_NE(error({"Scene/semicircular bending/Loading velocity=0"})
+                .find("Scene/semicircular bending/Loading velocity"),
+            std::string::npos);
+  EXPECT_NE(error({"Scene/semicircular bending/Support rollers=left"})
+                .find("Scene/semicircular bending/Support rollers"),
+            std::string::npos);
+  EXPECT_NE(error({"Scene/semicircular bending/Loading roller=top"})
+                .find("Scene/semicircular bending/Loading roller"),
+            std::string::npos);
+  EXPECT_NE(error({"Scene/semicircular bending/Notch crack overhang=0"})
+                .find("Scene/semicircular bending/Notch crack overhang"),
             std::string::npos);
   // The notch crack is the scene's: a crack written in the file is refused, naming it.
   const std::string crack = error({"Cracks/Polylines=0.06, 0.01, 0.06, 0.03"});
   EXPECT_NE(crack.find("Cracks/Polylines"), std::string::npos) << crack;
-  EXPECT_NE(crack.find("Scene/Notch crack"), std::string::npos) << crack;
+  EXPECT_NE(crack.find("Scene/semicircular bending/Notch crack"), std::string::npos)
+      << crack;
   const std::string shape = error({"Body 1/Shape=disc(0.06, 0.04, 0.02)"});
   EXPECT_NE(shape.find("Body 1/Shape"), std::string::npos) << shape;
 }

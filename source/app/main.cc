@@ -5,8 +5,8 @@
 #include <boost/program_options.hpp>
 
 #include <lme_mpm/base/input.h>
-#include <lme_mpm/solver/run_failed.h>
-#include <lme_mpm/solver/simulation.h>
+#include <lme_mpm/simulation/run.h>
+#include <lme_mpm/simulation/run_guard.h>
 
 #include <iostream>
 #include <memory>

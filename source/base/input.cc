@@ -82,6 +82,16 @@ std::vector<double> parse_doubles(const std::string &text, const std::string &en
   return values;
 }
 
+std::vector<std::string> parse_names(const std::string &text, const unsigned int n,
+                                     const std::string &entry)
+{
+  const auto names = split(text, ',');
+  AssertThrow(names.size() == n,
+              ExcBadInput(entry, "needs " + std::to_string(n) +
+                                     " comma-separated names, got '" + text + "'"));
+  return names;
+}
+
 template <int dim>
 dealii::Point<dim> parse_point(const std::string &text, const std::string &entry)
 {

@@ -142,7 +142,7 @@ Tensor<1, dim> NodeConstraint<dim>::velocity(const unsigned int i, const double 
 
 template <int dim>
 void NodeConstraint<dim>::update_reaction(
-    const FieldLayout &layout, const std::vector<std::uint8_t> *owned_nodes,
+    const FieldLayout &layout, const RankReductions *ranks,
     const std::vector<double> &mass, const std::vector<Tensor<1, dim>> &acceleration,
     const std::vector<Tensor<1, dim>> &force,
     const std::vector<Tensor<1, dim>> *mass_times_acceleration,
@@ -165,7 +165,7 @@ void NodeConstraint<dim>::update_reaction(
     for (unsigned int d = 0; d < dim; ++d)
       if (component_mask[d])
         mean_rate[d] += rate[I][d];
-    if (owned_nodes && !(*owned_nodes)[I])
+    if (ranks && !ranks->owns_node(I))
       continue;
     for (unsigned int d = 0; d < dim; ++d)
       if (component_mask[d])
@@ -261,16 +261,16 @@ double NodeConstraints<dim>::update_reactions(
 {
   double work = 0;
   for (auto &c : sets)
-    c->update_reaction(layout, owned_nodes, mass, acceleration, force,
-                       mass_times_acceleration, rate, dt, work);
+    c->update_reaction(layout, ranks, mass, acceleration, force, mass_times_acceleration,
+                       rate, dt, work);
   // Each rank summed its own nodes: the totals and the work over all of them.
   std::vector<double> totals;
   for (const auto &c : sets)
     for (unsigned int d = 0; d < dim; ++d)
       totals.push_back(c->reaction()[d]);
   totals.push_back(work);
-  if (sum_over_ranks)
-    sum_over_ranks(totals);
+  if (ranks)
+    ranks->sum(totals);
   for (unsigned int s = 0; s < sets.size(); ++s)
   {
     Tensor<1, dim> r;

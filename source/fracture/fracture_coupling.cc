@@ -151,8 +151,8 @@ void FractureCoupling<dim>::prepare(const ParticleStore<dim> &store)
       h_largest = std::max(h_largest, h);
   }
   // Every rank searches to the radius of all the particles.
-  if (max_over_ranks)
-    h_largest = max_over_ranks(h_largest);
+  if (ranks)
+    h_largest = ranks->max(h_largest);
   radius      = 0;
   seeded_rows = true;
   thresholds.fill(std::numeric_limits<double>::infinity());

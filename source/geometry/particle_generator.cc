@@ -91,6 +91,183 @@ void ParticleGenerator<dim>::declare_parameters(ParameterHandler &prm,
   }
 }
 
+namespace
+{
+/// One body as its entries describe it: where it is and what it is made of.
+template <int dim>
+struct BodyInput
+{
+  BodyPlacement placement;
+  std::unique_ptr<Geometry<dim>> shape;
+  std::vector<std::unique_ptr<Geometry<dim>>> holes;
+  /// Material zones: material index and region, later ones winning.
+  std::vector<std::pair<unsigned int, std::unique_ptr<Geometry<dim>>>> zones;
+  bool uniform = false;
+  std::unique_ptr<Functions::ParsedFunction<dim>> velocity;
+};
+
+/// Reads "Body @p b" (entered by the caller); throws ExcBadInput naming the entry.
+template <int dim>
+BodyInput<dim> read_body(ParameterHandler &prm, const std::string &section,
+                         const std::size_t n_materials)
+{
+  const auto &geometries = GeometryRegistry<dim>::instance();
+  BodyInput<dim> body;
+  BodyPlacement &placement = body.placement;
+  placement.section        = section;
+  BodyEntries<dim> in;
+  EntryList list(prm, EntryList::Mode::parse);
+  in.entries(list);
+  placement.material = in.material - 1;
+  AssertThrow(placement.material < n_materials,
+              ExcBadInput(section + "/Material",
+                          "must be between 1 and Problem/Number of materials = " +
+                              std::to_string(n_materials)));
+  body.shape = geometries.create(in.shape, section + "/Shape");
+  for (const auto &h : input::split(in.holes, ';'))
+    body.holes.push_back(geometries.create(h, section + "/Holes"));
+  for (const auto &z : input::split(in.zones, ';'))
+  {
+    const std::string entry = section + "/Material zones";
+    const auto colon        = z.find(':');
+    AssertThrow(colon != std::string::npos,
+                ExcBadInput(entry, "'" + z + "' is not of the form 'M: shape'"));
+    const std::string number = input::trim(z.substr(0, colon));
+    char *end                = nullptr;
+    const long m             = std::strtol(number.c_str(), &end, 10);
+    AssertThrow(!number.empty() && *end == '\0' && m >= 1 &&
+                    static_cast<std::size_t>(m) <= n_materials,
+                ExcBadInput(entry, "'" + number +
+                                       "' must be the number of a material, 1 to "
+                                       "Problem/Number of materials = " +
+                                       std::to_string(n_materials)));
+    body.zones.emplace_back(static_cast<unsigned int>(m - 1),
+                            geometries.create(z.substr(colon + 1), entry));
+    placement.zone_materials.push_back(static_cast<unsigned int>(m - 1));
+  }
+  placement.particles_per_cell = in.particles_per_cell;
+  body.uniform                 = in.placement == "uniform";
+  body.velocity                = std::make_unique<Functions::ParsedFunction<dim>>(dim);
+  input::parse_function(prm, "Initial velocity", *body.velocity,
+                        section + "/Initial velocity");
+  return body;
+}
+
+/// Throws unless the body's shape lies inside the grid (or part of it would silently
+/// vanish); returns its bounding box.
+template <int dim>
+std::pair<Point<dim>, Point<dim>> check_inside_grid(const BodyInput<dim> &body,
+                                                    const BackgroundGrid<dim> &grid)
+{
+  const double tol = 1e-9 * (grid.upper_corner() - grid.lower_corner()).norm();
+  const auto box   = body.shape->bounding_box().get_boundary_points();
+  for (unsigned int d = 0; d < dim; ++d)
+    if (box.first[d] > -1e299)
+      AssertThrow(box.first[d] >= grid.lower_corner()[d] - tol &&
+                      box.second[d] <= grid.upper_corner()[d] + tol,
+                  ExcBadInput(body.placement.section + "/Shape",
+                              std::string("the body reaches outside the background "
+                                          "grid along ") +
+                                  "xyz"[d]));
+  return box;
+}
+
+/**
+ * Adds the particles of @p body (number @p b) at the quadrature points of the
+ * background cells that overlap its box and lie inside it, and records where they
+ * sit in their cells.
+ */
+template <int dim>
+void place_particles(BodyInput<dim> &body, const unsigned int b,
+                     const BackgroundGrid<dim> &grid,
+                     const std::vector<double> &densities, const double thickness,
+                     ParticleStore<dim> &store)
+{
+  BodyPlacement &placement = body.placement;
+  const auto box           = check_inside_grid(body, grid);
+  std::array<unsigned int, dim> lo, hi, q_lo{}, q_hi;
+  for (unsigned int d = 0; d < dim; ++d)
+  {
+    grid.locate(std::max(box.first[d], grid.coordinates(d).front()), d, lo[d]);
+    grid.locate(std::min(box.second[d], grid.coordinates(d).back()), d, hi[d]);
+    q_hi[d] = placement.particles_per_cell - 1;
+  }
+  const QGauss<1> gauss_rule(placement.particles_per_cell);
+  const QIterated<1> uniform_rule(QMidpoint<1>(), placement.particles_per_cell);
+  const Quadrature<1> &rule = body.uniform
+                                  ? static_cast<const Quadrature<1> &>(uniform_rule)
+                                  : static_cast<const Quadrature<1> &>(gauss_rule);
+  const std::size_t before  = store.size();
+  placement.cells.assign(grid.n_cells(), 0);
+  placement.offsets.clear();
+  placement.weights.clear();
+  for (unsigned int q = 0; q < rule.size(); ++q)
+  {
+    placement.offsets.push_back(rule.point(q)[0]);
+    placement.weights.push_back(rule.weight(q));
+  }
+  {
+    // At most this many particles, before any is allocated (about 600 bytes each
+    // in 2D and 900 in 3D with their connectivity, measured on linear functions).
+    double candidates = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      candidates *= double(hi[d] - lo[d] + 1) * placement.particles_per_cell;
+    std::ostringstream what;
+    what << "up to " << candidates << " particles";
+    memory::require((store.size() + candidates) * (dim == 2 ? 600.0 : 900.0),
+                    placement.section + "/Particles per cell direction", what.str());
+  }
+  for_each_index<dim>(
+      lo, hi,
+      [&](const std::array<unsigned int, dim> &ijk)
+      {
+        for_each_index<dim>(
+            q_lo, q_hi,
+            [&](const std::array<unsigned int, dim> &q)
+            {
+              Point<dim> x;
+              double volume = dim == 2 ? thickness : 1.0;
+              for (unsigned int d = 0; d < dim; ++d)
+              {
+                const double h = grid.spacing(d, ijk[d]);
+                x[d]           = grid.coordinates(d)[ijk[d]] + h * rule.point(q[d])[0];
+                volume *= h * rule.weight(q[d]);
+              }
+              bool keep = body.shape->inside(x);
+              for (const auto &h : body.holes)
+                keep = keep && !h->inside(x);
+              if (!keep)
+                return;
+              unsigned int material = placement.material;
+              for (const auto &zone : body.zones)
+                if (zone.second->inside(x))
+                  material = zone.first;
+              const double rho = densities[material];
+              AssertThrow(std::isfinite(rho * volume) && rho * volume > 0,
+                          ExcBadInput(placement.section,
+                                      "a particle's volume " + format_double(volume) +
+                                          " m^3 and mass " + format_double(rho * volume) +
+                                          " kg (from the cell size, Problem/Thickness "
+                                          "and the material's Density) must be "
+                                          "finite and positive"));
+              const std::size_t p = store.add(x, rho * volume, volume, material, b);
+              placement.cells[grid.cell_index(ijk)] = 1;
+              for (unsigned int d = 0; d < dim; ++d)
+              {
+                store.velocity[p][d] = body.velocity->value(x, d);
+                AssertThrow(std::isfinite(store.velocity[p][d]),
+                            ExcBadInput(placement.section + "/Initial velocity",
+                                        "is not finite at " + point_to_string(x)));
+              }
+            });
+      });
+  AssertThrow(store.size() > before,
+              ExcBadInput(placement.section + "/Shape",
+                          "the body holds no particle: it is smaller than a cell or "
+                          "fully cut away"));
+}
+} // namespace
+
 template <int dim>
 std::vector<BodyPlacement>
 ParticleGenerator<dim>::fill(ParameterHandler &prm, const unsigned int n_bodies,
@@ -98,147 +275,15 @@ ParticleGenerator<dim>::fill(ParameterHandler &prm, const unsigned int n_bodies,
                              const std::vector<double> &densities, const double thickness,
                              ParticleStore<dim> &store)
 {
-  const auto &geometries = GeometryRegistry<dim>::instance();
-  const double tol       = 1e-9 * (grid.upper_corner() - grid.lower_corner()).norm();
   std::vector<BodyPlacement> bodies;
   for (unsigned int b = 0; b < n_bodies; ++b)
   {
-    BodyPlacement body;
-    body.section = input::subsection_name("Body", b);
-    prm.enter_subsection(body.section);
-    BodyEntries<dim> in;
-    EntryList list(prm, EntryList::Mode::parse);
-    in.entries(list);
-    body.material = in.material - 1;
-    AssertThrow(body.material < densities.size(),
-                ExcBadInput(body.section + "/Material",
-                            "must be between 1 and Problem/Number of materials = " +
-                                std::to_string(densities.size())));
-    const auto shape = geometries.create(in.shape, body.section + "/Shape");
-    std::vector<std::unique_ptr<Geometry<dim>>> holes;
-    for (const auto &h : input::split(in.holes, ';'))
-      holes.push_back(geometries.create(h, body.section + "/Holes"));
-    std::vector<std::pair<unsigned int, std::unique_ptr<Geometry<dim>>>> zones;
-    for (const auto &z : input::split(in.zones, ';'))
-    {
-      const std::string entry = body.section + "/Material zones";
-      const auto colon        = z.find(':');
-      AssertThrow(colon != std::string::npos,
-                  ExcBadInput(entry, "'" + z + "' is not of the form 'M: shape'"));
-      const std::string number = input::trim(z.substr(0, colon));
-      char *end                = nullptr;
-      const long m             = std::strtol(number.c_str(), &end, 10);
-      AssertThrow(!number.empty() && *end == '\0' && m >= 1 &&
-                      static_cast<std::size_t>(m) <= densities.size(),
-                  ExcBadInput(entry, "'" + number +
-                                         "' must be the number of a material, 1 to "
-                                         "Problem/Number of materials = " +
-                                         std::to_string(densities.size())));
-      zones.emplace_back(static_cast<unsigned int>(m - 1),
-                         geometries.create(z.substr(colon + 1), entry));
-      body.zone_materials.push_back(static_cast<unsigned int>(m - 1));
-    }
-    body.particles_per_cell      = in.particles_per_cell;
-    const bool uniform_placement = in.placement == "uniform";
-    Functions::ParsedFunction<dim> velocity(dim);
-    input::parse_function(prm, "Initial velocity", velocity,
-                          body.section + "/Initial velocity");
+    const std::string section = input::subsection_name("Body", b);
+    prm.enter_subsection(section);
+    BodyInput<dim> body = read_body<dim>(prm, section, densities.size());
     prm.leave_subsection();
-
-    // The body must lie inside the grid, or part of it would silently vanish.
-    const auto box = shape->bounding_box().get_boundary_points();
-    for (unsigned int d = 0; d < dim; ++d)
-      if (box.first[d] > -1e299)
-        AssertThrow(box.first[d] >= grid.lower_corner()[d] - tol &&
-                        box.second[d] <= grid.upper_corner()[d] + tol,
-                    ExcBadInput(body.section + "/Shape",
-                                std::string("the body reaches outside the background "
-                                            "grid along ") +
-                                    "xyz"[d]));
-
-    // Quadrature points of the background cells that overlap the body's box.
-    std::array<unsigned int, dim> lo, hi, q_lo{}, q_hi;
-    for (unsigned int d = 0; d < dim; ++d)
-    {
-      grid.locate(std::max(box.first[d], grid.coordinates(d).front()), d, lo[d]);
-      grid.locate(std::min(box.second[d], grid.coordinates(d).back()), d, hi[d]);
-      q_hi[d] = body.particles_per_cell - 1;
-    }
-    const QGauss<1> gauss_rule(body.particles_per_cell);
-    const QIterated<1> uniform_rule(QMidpoint<1>(), body.particles_per_cell);
-    const Quadrature<1> &rule = uniform_placement
-                                    ? static_cast<const Quadrature<1> &>(uniform_rule)
-                                    : static_cast<const Quadrature<1> &>(gauss_rule);
-    const std::size_t before  = store.size();
-    body.cells.assign(grid.n_cells(), 0);
-    body.offsets.clear();
-    body.weights.clear();
-    for (unsigned int q = 0; q < rule.size(); ++q)
-    {
-      body.offsets.push_back(rule.point(q)[0]);
-      body.weights.push_back(rule.weight(q));
-    }
-    {
-      // At most this many particles, before any is allocated (about 600 bytes each
-      // in 2D and 900 in 3D with their connectivity, measured on linear functions).
-      double candidates = 1;
-      for (unsigned int d = 0; d < dim; ++d)
-        candidates *= double(hi[d] - lo[d] + 1) * body.particles_per_cell;
-      std::ostringstream what;
-      what << "up to " << candidates << " particles";
-      memory::require((store.size() + candidates) * (dim == 2 ? 600.0 : 900.0),
-                      body.section + "/Particles per cell direction", what.str());
-    }
-    for_each_index<dim>(
-        lo, hi,
-        [&](const std::array<unsigned int, dim> &ijk)
-        {
-          for_each_index<dim>(
-              q_lo, q_hi,
-              [&](const std::array<unsigned int, dim> &q)
-              {
-                Point<dim> x;
-                double volume = dim == 2 ? thickness : 1.0;
-                for (unsigned int d = 0; d < dim; ++d)
-                {
-                  const double h = grid.spacing(d, ijk[d]);
-                  x[d]           = grid.coordinates(d)[ijk[d]] + h * rule.point(q[d])[0];
-                  volume *= h * rule.weight(q[d]);
-                }
-                bool keep = shape->inside(x);
-                for (const auto &h : holes)
-                  keep = keep && !h->inside(x);
-                if (!keep)
-                  return;
-                unsigned int material = body.material;
-                for (const auto &zone : zones)
-                  if (zone.second->inside(x))
-                    material = zone.first;
-                const double rho = densities[material];
-                AssertThrow(std::isfinite(rho * volume) && rho * volume > 0,
-                            ExcBadInput(body.section,
-                                        "a particle's volume " + format_double(volume) +
-                                            " m^3 and mass " +
-                                            format_double(rho * volume) +
-                                            " kg (from the cell size, Problem/Thickness "
-                                            "and the material's Density) must be "
-                                            "finite and positive"));
-                const std::size_t p = store.add(x, rho * volume, volume, material, b);
-                body.cells[grid.cell_index(ijk)] = 1;
-                for (unsigned int d = 0; d < dim; ++d)
-                {
-                  store.velocity[p][d] = velocity.value(x, d);
-                  AssertThrow(std::isfinite(store.velocity[p][d]),
-                              ExcBadInput(body.section + "/Initial velocity",
-                                          "is not finite at " + point_to_string(x)));
-                }
-              });
-        });
-    AssertThrow(store.size() > before,
-                ExcBadInput(body.section + "/Shape",
-                            "the body holds no particle: it is smaller than a cell or "
-                            "fully cut away"));
-    bodies.push_back(body);
+    place_particles(body, b, grid, densities, thickness, store);
+    bodies.push_back(std::move(body.placement));
   }
   for (std::size_t p = 0; p < store.size(); ++p)
     store.id[p] = static_cast<std::uint32_t>(p);

@@ -1,4 +1,5 @@
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/base/parameters.h>
 #include <lme_mpm/scenes/scene_tools.h>
 
 #include <cmath>
@@ -24,141 +25,136 @@ namespace scenes
  * splitting_strength 2 P / (pi D t), the Hondros centre stress per unit load, and
  * where the damage lies (the share within D/10 of the loaded diameter).
  */
+/// The Brazilian scene's entries, declared and read from this one list.
+struct BrazilianEntries
+{
+  double diameter = 0.15, length = 0.3, strip_width = 0.01, strip_thickness = 0.005;
+  double velocity = 0.05, ramp = 1e-4, gauge = 0.075, stop_fraction = 0.3;
+  double zone_depth          = 0;
+  unsigned int zone_material = 2;
+  std::string centre, disc, top, bottom;
+
+  void entries(EntryList &list)
+  {
+    list.add("Diameter", diameter, "0.15", Patterns::Double(),
+             "The disc's diameter D (m), > 0.");
+    list.add("Centre", centre, "0.1, 0.1", Patterns::Anything(),
+             "The disc's centre (x, y in m; the axis runs along z in 3D).");
+    list.add("Length", length, "0.3", Patterns::Double(),
+             "3D only: the cylinder's length along z (m), from z = 0; > 0. In 2D the "
+             "thickness is Problem/Thickness.");
+    list.add("Strip width", strip_width, "0.010", Patterns::Double(),
+             "Width b of the bearing strips (m), in (0, D).");
+    list.add("Strip thickness", strip_thickness, "0.005", Patterns::Double(),
+             "The strips' thickness at their middle (m), > 0.");
+    list.add("Loading velocity", velocity, "0.05", Patterns::Double(),
+             "The speed (m/s) at which each strip moves towards the centre, > 0; keep "
+             "the loading time far above D / c_P.");
+    list.add("Loading ramp time", ramp, "1e-4", Patterns::Double(),
+             "The strips' speed rises smoothly from zero over this time (s), >= 0.");
+    list.add("Opening gauge length", gauge, "0.075", Patterns::Double(),
+             "The history column 'opening' is the change in distance between the "
+             "disc's material points at x = cx -+ half this length on the horizontal "
+             "diameter (m), in (0, D).");
+    list.add("Stop at load fraction", stop_fraction, "0.3", Patterns::Double(),
+             "Once the load (the top strip's force in a history row) has fallen below "
+             "this fraction of its peak, the run ends, as a testing machine stops after "
+             "the specimen fails; in [0, 1), 0: run to the end time.");
+    list.add("Elastic zone depth", zone_depth, "0", Patterns::Double(),
+             "The disc's particles within this depth (m) of a strip's contact arc, over "
+             "the strip's width plus this depth on each side, are made of the elastic "
+             "zone material (no fracture there: the concrete under a rigid jaw would "
+             "otherwise fail in local crushing at the jaw's edges); >= 0, 0: none.");
+    list.add("Elastic zone material", zone_material, "2", Patterns::Integer(1),
+             "The number N of the 'Material N' of the elastic zones.");
+    list.add("Disc", disc, "disc", Patterns::Anything(), "The Body N/Name of the disc.");
+    list.add("Top strip", top, "top", Patterns::Anything(),
+             "The Body N/Name of the upper strip (its force is the load).");
+    list.add("Bottom strip", bottom, "bottom", Patterns::Anything(),
+             "The Body N/Name of the lower strip.");
+  }
+};
+
 template <int dim>
-class Brazilian : public Scene<dim>
+class Brazilian : public Scene<dim>, private BrazilianEntries
 {
 public:
   static void declare_parameters(ParameterHandler &prm)
   {
-    prm.declare_entry("Diameter", "0.15", Patterns::Double(),
-                      "Brazilian test: the disc's diameter D (m), > 0.");
-    prm.declare_entry("Centre", "0.1, 0.1", Patterns::Anything(),
-                      "Brazilian test: the disc's centre (x, y in m; the axis runs "
-                      "along z in 3D).");
-    prm.declare_entry("Length", "0.3", Patterns::Double(),
-                      "Brazilian test, 3D only: the cylinder's length along z (m), from "
-                      "z = 0; > 0. In 2D the thickness is Problem/Thickness.");
-    prm.declare_entry("Strip width", "0.010", Patterns::Double(),
-                      "Brazilian test: width b of the bearing strips (m), in (0, D).");
-    prm.declare_entry("Strip thickness", "0.005", Patterns::Double(),
-                      "Brazilian test: the strips' thickness at their middle (m), > 0.");
-    prm.declare_entry("Loading velocity", "0.05", Patterns::Double(),
-                      "Brazilian test: the speed (m/s) at which each strip moves towards "
-                      "the centre, > 0; keep the loading time far above D / c_P.");
-    prm.declare_entry("Loading ramp time", "1e-4", Patterns::Double(),
-                      "Brazilian test: the strips' speed rises smoothly from zero over "
-                      "this time (s), >= 0.");
-    prm.declare_entry("Opening gauge length", "0.075", Patterns::Double(),
-                      "Brazilian test: the history column 'opening' is the change in "
-                      "distance between the disc's material points at x = cx -+ half "
-                      "this length on the horizontal diameter (m), in (0, D).");
-    prm.declare_entry("Stop at load fraction", "0.3", Patterns::Double(),
-                      "Brazilian test: once the load (the top strip's force in a history "
-                      "row) has fallen below this fraction of its peak, the run ends, as "
-                      "a testing machine stops after the specimen fails; in [0, 1), 0: "
-                      "run to the end time.");
-    prm.declare_entry("Elastic zone depth", "0", Patterns::Double(),
-                      "Brazilian test: the disc's particles within this depth (m) of a "
-                      "strip's contact arc, over the strip's width plus this depth on "
-                      "each side, are made of Scene/Elastic zone material (no fracture "
-                      "there: the concrete under a rigid jaw would otherwise fail in "
-                      "local crushing at the jaw's edges); >= 0, 0: none.");
-    prm.declare_entry("Elastic zone material", "2", Patterns::Integer(1),
-                      "Brazilian test: the number N of the 'Material N' of the elastic "
-                      "zones.");
-    prm.declare_entry("Disc", "disc", Patterns::Anything(),
-                      "Brazilian test: the Body N/Name of the disc.");
-    prm.declare_entry("Top strip", "top", Patterns::Anything(),
-                      "Brazilian test: the Body N/Name of the upper strip (its force is "
-                      "the load).");
-    prm.declare_entry("Bottom strip", "bottom", Patterns::Anything(),
-                      "Brazilian test: the Body N/Name of the lower strip.");
+    EntryList::declare<BrazilianEntries>(prm);
   }
 
   Brazilian(ParameterHandler &prm, const SceneContext<dim> &context)
-      : n_bodies(context.n_bodies)
+      : BrazilianEntries(EntryList::parse<BrazilianEntries>(prm))
   {
-    diameter        = prm.get_double("Diameter");
-    length          = dim == 3 ? prm.get_double("Length") : context.thickness;
-    strip_width     = prm.get_double("Strip width");
-    strip_thickness = prm.get_double("Strip thickness");
-    velocity        = prm.get_double("Loading velocity");
-    ramp            = prm.get_double("Loading ramp time");
-    gauge           = prm.get_double("Opening gauge length");
-    stop_fraction   = prm.get_double("Stop at load fraction");
-    zone_depth      = prm.get_double("Elastic zone depth");
-    zone_material   = prm.get_integer("Elastic zone material");
-    disc            = input::trim(prm.get("Disc"));
-    top             = input::trim(prm.get("Top strip"));
-    bottom          = input::trim(prm.get("Bottom strip"));
-    const auto c    = input::parse_doubles(prm.get("Centre"), "Scene/Centre");
-    AssertThrow(c.size() == 2, ExcBadInput("Scene/Centre", "needs two numbers: x, y"));
+    if (dim == 2)
+      length = context.thickness;
+    disc         = input::trim(disc);
+    top          = input::trim(top);
+    bottom       = input::trim(bottom);
+    const auto c = input::parse_point<2>(centre, entry("Centre"));
     cx = c[0], cy = c[1];
     const double big = 1e300;
-    input::require_range(diameter, 0, big, true, "Scene/Diameter");
-    input::require_range(strip_width, 0, diameter, true, "Scene/Strip width");
+    input::require_range(diameter, 0, big, true, entry("Diameter"));
+    input::require_range(strip_width, 0, diameter, true, entry("Strip width"));
     AssertThrow(strip_width < diameter,
-                ExcBadInput("Scene/Strip width", "must be below Scene/Diameter"));
-    input::require_range(strip_thickness, 0, big, true, "Scene/Strip thickness");
-    input::require_range(velocity, 0, big, true, "Scene/Loading velocity");
-    AssertThrow(velocity > 0, ExcBadInput("Scene/Loading velocity", "must be positive"));
-    input::require_range(ramp, 0, big, false, "Scene/Loading ramp time");
-    input::require_range(gauge, 0, diameter, true, "Scene/Opening gauge length");
+                ExcBadInput(entry("Strip width"), "must be below " + entry("Diameter")));
+    input::require_range(strip_thickness, 0, big, true, entry("Strip thickness"));
+    input::require_range(velocity, 0, big, true, entry("Loading velocity"));
+    AssertThrow(velocity > 0, ExcBadInput(entry("Loading velocity"), "must be positive"));
+    input::require_range(ramp, 0, big, false, entry("Loading ramp time"));
+    input::require_range(gauge, 0, diameter, true, entry("Opening gauge length"));
     AssertThrow(gauge > 0 && gauge < diameter,
-                ExcBadInput("Scene/Opening gauge length", "must lie in (0, D)"));
+                ExcBadInput(entry("Opening gauge length"), "must lie in (0, D)"));
     input::require_range(zone_depth, 0, 0.5 * diameter, false,
-                         "Scene/Elastic zone depth");
-    input::require_range(stop_fraction, 0, 1, false, "Scene/Stop at load fraction");
+                         entry("Elastic zone depth"));
+    input::require_range(stop_fraction, 0, 1, false, entry("Stop at load fraction"));
     AssertThrow(stop_fraction < 1,
-                ExcBadInput("Scene/Stop at load fraction", "must lie in [0, 1)"));
+                ExcBadInput(entry("Stop at load fraction"), "must lie in [0, 1)"));
     if (dim == 3)
-      AssertThrow(length > 0, ExcBadInput("Scene/Length", "must be positive"));
+      AssertThrow(length > 0, ExcBadInput(entry("Length"), "must be positive"));
   }
 
-  void set_entries(ParameterHandler &prm) const override
+  void write_entries(EntryWriter &writer) const override
   {
     const double R = 0.5 * diameter, b = strip_width;
-    const std::string rect_default =
-        dim == 2 ? "rectangle(0, 0, 1, 1)" : "rectangle(0, 0, 0, 1, 1, 1)";
     const std::string disc_shape = cylinder_shape<dim>(cx, cy, R, length);
     // Height above the centre where the disc's surface meets x = cx -+ b/2.
     const double rise = std::sqrt(R * R - 0.25 * b * b);
-    set_body_entry(prm, n_bodies, disc, "Shape", disc_shape, rect_default, "Scene/Disc");
+    writer.set_body(disc, "Shape", disc_shape, entry("Disc"));
     if (zone_depth > 0)
     {
-      prm.enter_subsection("Problem");
-      const auto n_materials = prm.get_integer("Number of materials");
-      prm.leave_subsection();
+      const auto n_materials = std::stoul(writer.get("Problem/Number of materials"));
       AssertThrow(zone_material <= n_materials,
-                  ExcBadInput("Scene/Elastic zone material",
+                  ExcBadInput(entry("Elastic zone material"),
                               "must be between 1 and Problem/Number of materials = " +
                                   std::to_string(n_materials)));
       // Under each strip: the cap of the disc beyond the strip's edge height less the
       // depth, over the strip's width plus the depth on each side.
       const double half   = 0.5 * b + zone_depth;
       const std::string m = std::to_string(zone_material) + ": ";
-      set_body_entry(prm, n_bodies, disc, "Material zones",
-                     m +
-                         box_shape<dim>(cx - half, cy + rise - zone_depth, cx + half,
-                                        cy + R, length) +
-                         "; " + m +
-                         box_shape<dim>(cx - half, cy - R, cx + half,
-                                        cy - rise + zone_depth, length),
-                     "", "Scene/Elastic zone depth");
+      writer.set_body(disc, "Material zones",
+                      m +
+                          box_shape<dim>(cx - half, cy + rise - zone_depth, cx + half,
+                                         cy + R, length) +
+                          "; " + m +
+                          box_shape<dim>(cx - half, cy - R, cx + half,
+                                         cy - rise + zone_depth, length),
+                      entry("Elastic zone depth"));
     }
     // Each strip: a box from where the disc's surface meets x = cx -+ b/2 outwards,
     // minus the disc, so that its inner face follows the disc over the width b.
     for (const int side : {1, -1})
     {
       const std::string &name = side > 0 ? top : bottom;
-      const std::string owner = side > 0 ? "Scene/Top strip" : "Scene/Bottom strip";
+      const std::string owner = entry(side > 0 ? "Top strip" : "Bottom strip");
       const double inner      = cy + side * rise;
       const double outer      = cy + side * (R + strip_thickness);
       const std::string shape =
           box_shape<dim>(cx - 0.5 * b, std::min(inner, outer), cx + 0.5 * b,
                          std::max(inner, outer), length);
-      set_body_entry(prm, n_bodies, name, "Shape", shape, rect_default, owner);
-      set_body_entry(prm, n_bodies, name, "Holes", disc_shape, "", owner);
+      writer.set_body(name, "Shape", shape, owner);
+      writer.set_body(name, "Holes", disc_shape, owner);
       // Towards the centre at the loading velocity after a cosine ramp.
       const std::string speed = ramp > 0
                                     ? "if(t < " + number(ramp) + ", " + number(velocity) +
@@ -169,16 +165,15 @@ public:
           "0; " + std::string(side > 0 ? "-" : "") + "(" + speed + ")";
       if (dim == 3)
         expression += "; 0";
-      set_body_entry(prm, n_bodies, name, "Prescribed velocity/Function expression",
-                     expression, "", owner);
+      writer.set_body(name, "Prescribed velocity/Function expression", expression, owner);
     }
   }
 
   void check(const SceneState<dim> &state) const override
   {
-    const unsigned int d = body_index(state, disc, "Scene/Disc");
-    (void)body_index(state, top, "Scene/Top strip");
-    (void)body_index(state, bottom, "Scene/Bottom strip");
+    const unsigned int d = body_index(state, disc, entry("Disc"));
+    (void)body_index(state, top, entry("Top strip"));
+    (void)body_index(state, bottom, entry("Bottom strip"));
     AssertThrow(state.run->body_force.norm() == 0,
                 ExcBadInput("Problem/Body force",
                             "the Brazilian test has no gravity (its "
@@ -186,7 +181,7 @@ public:
     // Both gauge points must hold particles, or the opening would read zero.
     for (const int side : {-1, 1})
       AssertThrow(gauge_weight(*state.particles, d, side) > 0,
-                  ExcBadInput("Scene/Opening gauge length",
+                  ExcBadInput(entry("Opening gauge length"),
                               "no particle of the disc lies within " +
                                   number(gauge_radius()) + " m of a gauge point"));
   }
@@ -198,7 +193,7 @@ public:
 
   void write_history_row(std::ostream &out, const SceneState<dim> &state) const override
   {
-    const unsigned int d = body_index(state, disc, "Scene/Disc");
+    const unsigned int d = body_index(state, disc, entry("Disc"));
     out << ","
         << gauge_displacement(*state.particles, d, 1) -
                gauge_displacement(*state.particles, d, -1);
@@ -224,7 +219,7 @@ public:
   {
     if (stop_fraction <= 0 || state.contact_forces == nullptr)
       return {};
-    const unsigned int s = body_index(state, top, "Scene/Top strip");
+    const unsigned int s = body_index(state, top, entry("Top strip"));
     const double peak    = (*state.peak_contact_forces)[s];
     if (peak > 0 && (*state.contact_forces)[s].norm() < stop_fraction * peak)
       return "the load fell below " + number(stop_fraction) + " of its peak";
@@ -247,7 +242,7 @@ public:
     // Where the damage is: its volume-weighted share within D/10 of the loaded
     // diameter, and the vertical extent of the fully softened band there.
     const ParticleStore<dim> &p = *state.particles;
-    const unsigned int d        = body_index(state, disc, "Scene/Disc");
+    const unsigned int d        = body_index(state, disc, entry("Disc"));
     double all = 0, near = 0, lo = 1e300, hi = -1e300;
     for (std::size_t i = 0; i < p.size(); ++i)
       if (p.body_id[i] == d && p.damage[i] > 0)
@@ -301,12 +296,8 @@ private:
     return m > 0 ? u / m : 0;
   }
 
-  unsigned int n_bodies;
-  double diameter = 0.15, length = 1, strip_width = 0.01, strip_thickness = 0.005;
-  double velocity = 0.05, ramp = 1e-4, gauge = 0.075, cx = 0.1, cy = 0.1;
-  double stop_fraction = 0.3, zone_depth = 0;
-  unsigned int zone_material = 2;
-  std::string disc, top, bottom;
+  static std::string entry(const std::string &name) { return "Scene/brazilian/" + name; }
+  double cx = 0.1, cy = 0.1;
 };
 } // namespace scenes
 } // namespace lme_mpm
@@ -314,7 +305,7 @@ private:
 using lme_mpm::scenes::Brazilian;
 LME_MPM_REGISTER_SCENE(
     Brazilian, "brazilian",
-    "the Brazilian splitting test: a disc (Scene/Diameter) between "
-    "two bearing strips (Scene/Strip width) that close at "
-    "Scene/Loading velocity; writes the bodies' shapes and the strips' "
+    "the Brazilian splitting test: a disc (Diameter) between two bearing strips "
+    "(Strip width) that close at the Loading velocity; writes the bodies' shapes and the "
+    "strips' "
     "velocities, reports peak_force and splitting_strength.")

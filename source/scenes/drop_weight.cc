@@ -1,4 +1,5 @@
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/base/parameters.h>
 #include <lme_mpm/scenes/scene_tools.h>
 
 #include <cmath>
@@ -30,203 +31,153 @@ namespace scenes
  * opening) and damage_total. Summary: the peaks of the impact and reaction forces and
  * their times from the first contact.
  */
+/// The drop-weight scene's entries, declared and read from this one list.
+struct DropWeightEntries
+{
+  double length = 0.42, depth = 0.1, width = 0.1, span = 0.3, support = 0.01;
+  double notch_depth = 0.05, notch_width = 0.0025, overhang = 0.015;
+  double hammer_width = 0.05, hammer_height = 0.05, hammer_mass = 120.6;
+  double velocity  = 2.64;
+  bool notch_crack = true;
+  std::string centre, beam, hammer, supports;
+
+  void entries(EntryList &list)
+  {
+    list.add("Beam centre", centre, "0.23, 0.025", Patterns::Anything(),
+             "The middle of the beam's bottom face (x, y in m), where the notch starts.");
+    list.add("Beam length", length, "0.42", Patterns::Double(),
+             "The beam's length along x (m), > span.");
+    list.add("Beam depth", depth, "0.1", Patterns::Double(),
+             "The beam's depth along y (m), > 0.");
+    list.add("Length", width, "0.1", Patterns::Double(),
+             "3D only: the beam's width along z (m), from z = 0. In 2D it is "
+             "Problem/Thickness.");
+    list.add("Span", span, "0.3", Patterns::Double(),
+             "The distance between the supports' axes (m), in (0, beam length).");
+    list.add("Support radius", support, "0.01", Patterns::Double(),
+             "The support cylinders' radius (m), > 0.");
+    list.add("Notch depth", notch_depth, "0.05", Patterns::Double(),
+             "The notch's depth from the bottom face (m), in (0, beam depth).");
+    list.add("Notch width", notch_width, "0.0025", Patterns::Double(),
+             "The notch's width (m), > 0; at least the particle spacing, or no particle "
+             "is removed.");
+    list.add("Notch crack", notch_crack, "true", Patterns::Bool(),
+             "2D: an explicit crack (Cracks) on the notch's centre line from the notch "
+             "crack overhang below the bottom face to the notch tip, so that the grid "
+             "does not tie the notch faces together. Must be false in 3D.");
+    list.add("Notch crack overhang", overhang, "0.015", Patterns::Double(),
+             "How far the notch crack reaches below the bottom face (m); at least the "
+             "shape functions' support radius; > 0.");
+    list.add("Hammer width", hammer_width, "0.05", Patterns::Double(),
+             "The hammer's width along x (m), > 0.");
+    list.add("Hammer height", hammer_height, "0.05", Patterns::Double(),
+             "The hammer's height along y (m), > 0.");
+    list.add("Hammer mass", hammer_mass, "120.6", Patterns::Double(),
+             "The hammer's mass (kg) over the real thickness (Problem/Thickness in 2D, "
+             "Length in 3D); sets the density of the hammer's material, > 0.");
+    list.add("Impact velocity", velocity, "2.64", Patterns::Double(),
+             "The hammer's downward speed at first contact (m/s), > 0.");
+    list.add("Beam", beam, "beam", Patterns::Anything(), "The Body N/Name of the beam.");
+    list.add("Hammer", hammer, "hammer", Patterns::Anything(),
+             "The Body N/Name of the hammer.");
+    list.add("Supports", supports, "left, right", Patterns::Anything(),
+             "The names of the supports at -x and +x: Body N/Name of two bodies with "
+             "Contact/Type = multi-field, Boundary conditions/Constraint N/Name of two "
+             "node sets with Contact/Type = none.");
+  }
+};
+
 template <int dim>
-class DropWeight : public Scene<dim>
+class DropWeight : public Scene<dim>, private DropWeightEntries
 {
 public:
   static void declare_parameters(ParameterHandler &prm)
   {
-    prm.declare_entry("Beam centre", "0.23, 0.025", Patterns::Anything(),
-                      "Drop weight: the middle of the beam's bottom face (x, y in m), "
-                      "where the notch starts.");
-    prm.declare_entry("Beam length", "0.42", Patterns::Double(),
-                      "Drop weight: the beam's length along x (m), > span.");
-    prm.declare_entry("Beam depth", "0.1", Patterns::Double(),
-                      "Drop weight: the beam's depth along y (m), > 0.");
-    prm.declare_entry("Length", "0.1", Patterns::Double(),
-                      "Drop weight, 3D only: the beam's width along z (m), from z = 0. "
-                      "In 2D it is Problem/Thickness.");
-    prm.declare_entry("Span", "0.3", Patterns::Double(),
-                      "Drop weight: the distance between the supports' axes (m), in "
-                      "(0, beam length).");
-    prm.declare_entry("Support radius", "0.01", Patterns::Double(),
-                      "Drop weight: the support cylinders' radius (m), > 0.");
-    prm.declare_entry("Notch depth", "0.05", Patterns::Double(),
-                      "Drop weight: the notch's depth from the bottom face (m), in "
-                      "(0, beam depth).");
-    prm.declare_entry("Notch width", "0.0025", Patterns::Double(),
-                      "Drop weight: the notch's width (m), > 0; at least the particle "
-                      "spacing, or no particle is removed.");
-    prm.declare_entry("Notch crack", "true", Patterns::Bool(),
-                      "Drop weight, 2D: an explicit crack (Cracks) on the notch's centre "
-                      "line from Scene/Notch crack overhang below the bottom face to the "
-                      "notch tip, so that the grid does not tie the notch faces "
-                      "together. Must be false in 3D.");
-    prm.declare_entry("Notch crack overhang", "0.015", Patterns::Double(),
-                      "Drop weight: how far the notch crack reaches below the bottom "
-                      "face (m); at least the shape functions' support radius; > 0.");
-    prm.declare_entry("Hammer width", "0.05", Patterns::Double(),
-                      "Drop weight: the hammer's width along x (m), > 0.");
-    prm.declare_entry("Hammer height", "0.05", Patterns::Double(),
-                      "Drop weight: the hammer's height along y (m), > 0.");
-    prm.declare_entry("Hammer mass", "120.6", Patterns::Double(),
-                      "Drop weight: the hammer's mass (kg) over the real thickness "
-                      "(Problem/Thickness in 2D, Scene/Length in 3D); sets the density "
-                      "of the hammer's material, > 0.");
-    prm.declare_entry("Impact velocity", "2.64", Patterns::Double(),
-                      "Drop weight: the hammer's downward speed at first contact (m/s), "
-                      "> 0.");
-    prm.declare_entry("Beam", "beam", Patterns::Anything(),
-                      "Drop weight: the Body N/Name of the beam.");
-    prm.declare_entry("Hammer", "hammer", Patterns::Anything(),
-                      "Drop weight: the Body N/Name of the hammer.");
-    prm.declare_entry("Supports", "left, right", Patterns::Anything(),
-                      "Drop weight: the names of the supports at -x and +x: Body N/Name "
-                      "of two bodies with Contact/Type = multi-field, Boundary "
-                      "conditions/Constraint N/Name of two node sets with "
-                      "Contact/Type = none.");
+    EntryList::declare<DropWeightEntries>(prm);
   }
 
   DropWeight(ParameterHandler &prm, const SceneContext<dim> &context)
-      : n_bodies(context.n_bodies), n_constraints(context.n_constraints),
+      : DropWeightEntries(EntryList::parse<DropWeightEntries>(prm)),
         single_field(!context.contact)
   {
-    length              = prm.get_double("Beam length");
-    depth               = prm.get_double("Beam depth");
-    width               = dim == 3 ? prm.get_double("Length") : context.thickness;
-    span                = prm.get_double("Span");
-    support             = prm.get_double("Support radius");
-    notch_depth         = prm.get_double("Notch depth");
-    notch_width         = prm.get_double("Notch width");
-    notch_crack         = prm.get_bool("Notch crack");
-    overhang            = prm.get_double("Notch crack overhang");
-    hammer_width        = prm.get_double("Hammer width");
-    hammer_height       = prm.get_double("Hammer height");
-    hammer_mass         = prm.get_double("Hammer mass");
-    velocity            = prm.get_double("Impact velocity");
-    beam                = input::trim(prm.get("Beam"));
-    hammer              = input::trim(prm.get("Hammer"));
-    const auto supports = input::split(prm.get("Supports"), ',');
-    AssertThrow(supports.size() == 2,
-                ExcBadInput("Scene/Supports", "needs two names, 'left, right'"));
-    left         = input::trim(supports[0]);
-    right        = input::trim(supports[1]);
-    const auto c = input::parse_doubles(prm.get("Beam centre"), "Scene/Beam centre");
-    AssertThrow(c.size() == 2,
-                ExcBadInput("Scene/Beam centre", "needs two numbers: x, y"));
+    if (dim == 2)
+      width = context.thickness;
+    beam             = input::trim(beam);
+    hammer           = input::trim(hammer);
+    const auto names = input::parse_names(supports, 2, entry("Supports"));
+    left = names[0], right = names[1];
+    const auto c = input::parse_point<2>(centre, entry("Beam centre"));
     cx = c[0], cy = c[1];
     const double big = 1e300;
-    input::require_range(length, 0, big, true, "Scene/Beam length");
-    input::require_range(depth, 0, big, true, "Scene/Beam depth");
+    input::require_range(length, 0, big, true, entry("Beam length"));
+    input::require_range(depth, 0, big, true, entry("Beam depth"));
     input::require_range(width, 0, big, true,
-                         dim == 3 ? "Scene/Length" : "Problem/Thickness");
-    input::require_range(span, 0, length, true, "Scene/Span");
-    input::require_range(support, 0, big, true, "Scene/Support radius");
-    input::require_range(notch_depth, 0, depth, true, "Scene/Notch depth");
-    input::require_range(notch_width, 0, span, true, "Scene/Notch width");
-    input::require_range(overhang, 0, big, true, "Scene/Notch crack overhang");
-    input::require_range(hammer_width, 0, length, true, "Scene/Hammer width");
-    input::require_range(hammer_height, 0, big, true, "Scene/Hammer height");
-    input::require_range(hammer_mass, 0, big, true, "Scene/Hammer mass");
-    input::require_range(velocity, 0, big, true, "Scene/Impact velocity");
+                         dim == 3 ? entry("Length") : "Problem/Thickness");
+    input::require_range(span, 0, length, true, entry("Span"));
+    input::require_range(support, 0, big, true, entry("Support radius"));
+    input::require_range(notch_depth, 0, depth, true, entry("Notch depth"));
+    input::require_range(notch_width, 0, span, true, entry("Notch width"));
+    input::require_range(overhang, 0, big, true, entry("Notch crack overhang"));
+    input::require_range(hammer_width, 0, length, true, entry("Hammer width"));
+    input::require_range(hammer_height, 0, big, true, entry("Hammer height"));
+    input::require_range(hammer_mass, 0, big, true, entry("Hammer mass"));
+    input::require_range(velocity, 0, big, true, entry("Impact velocity"));
     if (dim == 3)
       AssertThrow(!notch_crack,
-                  ExcBadInput("Scene/Notch crack", "must be false in 3D (explicit "
-                                                   "cracks exist in 2D only)"));
+                  ExcBadInput(entry("Notch crack"), "must be false in 3D (explicit "
+                                                    "cracks exist in 2D only)"));
   }
 
-  void set_entries(ParameterHandler &prm) const override
+  void write_entries(EntryWriter &writer) const override
   {
-    const std::string rect_default =
-        dim == 2 ? "rectangle(0, 0, 1, 1)" : "rectangle(0, 0, 0, 1, 1, 1)";
-    const std::string zero = dim == 2 ? "0; 0" : "0; 0; 0";
-    set_body_entry(
-        prm, n_bodies, beam, "Shape",
+    writer.set_body(
+        beam, "Shape",
         box_shape<dim>(cx - 0.5 * length, cy, cx + 0.5 * length, cy + depth, width),
-        rect_default, "Scene/Beam");
+        entry("Beam"));
     // The notch, open below the bottom face by a margin that holds no particle.
-    set_body_entry(prm, n_bodies, beam, "Holes",
-                   box_shape<dim>(cx - 0.5 * notch_width, cy - 0.5 * notch_width,
-                                  cx + 0.5 * notch_width, cy + notch_depth, width),
-                   "", "Scene/Notch depth");
+    writer.set_body(beam, "Holes",
+                    box_shape<dim>(cx - 0.5 * notch_width, cy - 0.5 * notch_width,
+                                   cx + 0.5 * notch_width, cy + notch_depth, width),
+                    entry("Notch depth"));
     if (notch_crack)
     {
       const std::string line = number(cx) + ", " + number(cy - overhang) + ", " +
                                number(cx) + ", " + number(cy + notch_depth);
-      set_notch_crack(prm, n_bodies, beam, line, "Scene/Notch crack");
+      set_notch_crack(writer, beam, line, entry("Notch crack"));
     }
     for (const int side : {-1, 1})
-    {
-      const std::string &name = side < 0 ? left : right;
-      const double axis       = cx + 0.5 * side * span;
-      if (single_field)
-      {
-        const bool is_body = body_number(prm, n_bodies, name) < n_bodies;
-        AssertThrow(!is_body && n_constraints >= 2,
-                    ExcBadInput("Scene/Supports",
-                                "with Contact/Type = none the supports are node sets: "
-                                "give two Boundary conditions/Constraint N named '" +
-                                    left + "' and '" + right +
-                                    "' and no body of these names "
-                                    "(prm/drop_weight_single_field.prm)"));
-        // A knife edge under the face: the grid nodes within a quarter of the support
-        // radius of its axis (one column on the scene's grids), from the face down
-        // to where the cylinder would end.
-        const double a = 0.25 * support;
-        const std::string box =
-            dim == 2 ? number(axis - a) + ", " + number(cy - 2 * support) + ", " +
-                           number(axis + a) + ", " + number(cy + 1e-9 * depth)
-                     : number(axis - a) + ", " + number(cy - 2 * support) + ", 0, " +
-                           number(axis + a) + ", " + number(cy + 1e-9 * depth) + ", " +
-                           number(width);
-        const std::string section =
-            "Boundary conditions/" +
-            input::subsection_name("Constraint", find_constraint(prm, n_constraints, name,
-                                                                 "Scene/Supports"));
-        set_entry(prm, section + "/Box", box, "", "Scene/Supports");
-        set_entry(prm, section + "/Components", "y", "x", "Scene/Supports");
-      }
-      else
-      {
-        set_body_entry(prm, n_bodies, name, "Shape",
-                       cylinder_shape<dim>(axis, cy - support, support, width),
-                       rect_default, "Scene/Supports");
-        set_body_entry(prm, n_bodies, name, "Prescribed velocity/Function expression",
-                       ramped_velocity<dim>(0, 0, 0), "", "Scene/Supports");
-      }
-    }
+      write_support(writer, side < 0 ? left : right, cx + 0.5 * side * span);
     const double top = cy + depth;
-    set_body_entry(prm, n_bodies, hammer, "Shape",
-                   box_shape<dim>(cx - 0.5 * hammer_width, top, cx + 0.5 * hammer_width,
-                                  top + hammer_height, width),
-                   rect_default, "Scene/Hammer");
-    set_body_entry(prm, n_bodies, hammer, "Initial velocity/Function expression",
-                   dim == 2 ? "0; " + number(-velocity)
-                            : "0; " + number(-velocity) + "; 0",
-                   zero, "Scene/Impact velocity");
+    writer.set_body(hammer, "Shape",
+                    box_shape<dim>(cx - 0.5 * hammer_width, top, cx + 0.5 * hammer_width,
+                                   top + hammer_height, width),
+                    entry("Hammer"));
+    writer.set_body(hammer, "Initial velocity/Function expression",
+                    dim == 2 ? "0; " + number(-velocity)
+                             : "0; " + number(-velocity) + "; 0",
+                    entry("Impact velocity"));
     // The hammer's material gets the density that gives it its mass.
-    const unsigned int h = find_body(prm, n_bodies, hammer, "Scene/Hammer");
-    prm.enter_subsection(input::subsection_name("Body", h));
-    const std::string material = input::trim(prm.get("Material"));
-    prm.leave_subsection();
+    const std::string material =
+        writer.get(input::subsection_name("Body", writer.body(hammer, entry("Hammer"))) +
+                   "/Material");
     const double density = hammer_mass / (hammer_width * hammer_height * width);
-    set_entry(prm, "Material " + material + "/Density", number(density), "1000",
-              "Scene/Hammer mass", " for the hammer's material");
+    writer.set("Material " + material + "/Density", number(density), entry("Hammer mass"),
+               " for the hammer's material");
   }
 
   void check(const SceneState<dim> &state) const override
   {
-    (void)body_index(state, beam, "Scene/Beam");
-    (void)body_index(state, hammer, "Scene/Hammer");
+    (void)body_index(state, beam, entry("Beam"));
+    (void)body_index(state, hammer, entry("Hammer"));
     if (single_field)
     {
-      (void)constraint_named(state, left, "Scene/Supports");
-      (void)constraint_named(state, right, "Scene/Supports");
+      (void)constraint_named(state, left, entry("Supports"));
+      (void)constraint_named(state, right, entry("Supports"));
     }
     else
     {
-      (void)body_index(state, left, "Scene/Supports");
-      (void)body_index(state, right, "Scene/Supports");
+      (void)body_index(state, left, entry("Supports"));
+      (void)body_index(state, right, entry("Supports"));
     }
   }
 
@@ -239,8 +190,8 @@ public:
   void write_history_row(std::ostream &out, const SceneState<dim> &state) const override
   {
     const ParticleStore<dim> &p = *state.particles;
-    const unsigned int b        = body_index(state, beam, "Scene/Beam");
-    const unsigned int h        = body_index(state, hammer, "Scene/Hammer");
+    const unsigned int b        = body_index(state, beam, entry("Beam"));
+    const unsigned int h        = body_index(state, hammer, entry("Hammer"));
     // The hammer's momentum (for the real thickness in 2D: particle masses already
     // carry it).
     double momentum = 0, beam_momentum = 0;
@@ -257,8 +208,8 @@ public:
     if (single_field)
     {
       // The constraints' impulses over the row's interval: their mean reaction.
-      support_impulse = constraint_named(state, left, "Scene/Supports").impulse()[1] +
-                        constraint_named(state, right, "Scene/Supports").impulse()[1];
+      support_impulse = constraint_named(state, left, entry("Supports")).impulse()[1] +
+                        constraint_named(state, right, entry("Supports")).impulse()[1];
       if (interval > 0)
         reaction = (support_impulse - last_support_impulse) / interval;
     }
@@ -267,8 +218,8 @@ public:
       const auto &force = *state.contact_forces;
       impact            = force[h][1];
       // What the supports push the beam up with: minus the forces they receive.
-      reaction = -force[body_index(state, left, "Scene/Supports")][1] -
-                 force[body_index(state, right, "Scene/Supports")][1];
+      reaction = -force[body_index(state, left, entry("Supports"))][1] -
+                 force[body_index(state, right, entry("Supports"))][1];
     }
     // The crack mouth: material points on the bottom face 2 mm outside the notch.
     const double g = 0.5 * notch_width + 0.002, r = 0.0015;
@@ -312,14 +263,52 @@ public:
   }
 
 private:
-  unsigned int n_bodies, n_constraints;
+  static std::string entry(const std::string &name)
+  {
+    return "Scene/drop weight/" + name;
+  }
+
+  /// The support named @p name with its axis at x = @p axis: a cylinder (contact) or
+  /// the node column under the beam's face (one velocity field).
+  void write_support(EntryWriter &writer, const std::string &name,
+                     const double axis) const
+  {
+    if (!single_field)
+    {
+      writer.set_body(name, "Shape",
+                      cylinder_shape<dim>(axis, cy - support, support, width),
+                      entry("Supports"));
+      writer.set_body(name, "Prescribed velocity/Function expression",
+                      ramped_velocity<dim>(0, 0, 0), entry("Supports"));
+      return;
+    }
+    AssertThrow(!writer.has_body(name) && writer.n_constraints() >= 2,
+                ExcBadInput(entry("Supports"),
+                            "with Contact/Type = none the supports are node sets: give "
+                            "two Boundary conditions/Constraint N named '" +
+                                left + "' and '" + right +
+                                "' and no body of these names "
+                                "(prm/drop_weight_single_field.prm)"));
+    // A knife edge under the face: the grid nodes within a quarter of the support
+    // radius of its axis (one column on the scene's grids), from the face down to
+    // where the cylinder would end.
+    const double a = 0.25 * support;
+    const std::string box =
+        dim == 2 ? number(axis - a) + ", " + number(cy - 2 * support) + ", " +
+                       number(axis + a) + ", " + number(cy + 1e-9 * depth)
+                 : number(axis - a) + ", " + number(cy - 2 * support) + ", 0, " +
+                       number(axis + a) + ", " + number(cy + 1e-9 * depth) + ", " +
+                       number(width);
+    const std::string section =
+        "Boundary conditions/" +
+        input::subsection_name("Constraint", writer.constraint(name, entry("Supports")));
+    writer.set(section + "/Box", box, entry("Supports"));
+    writer.set(section + "/Components", "y", entry("Supports"));
+  }
+
   bool single_field;
-  double length = 0.42, depth = 0.1, width = 0.1, span = 0.3, support = 0.01;
-  double notch_depth = 0.05, notch_width = 0.0025, overhang = 0.015;
-  double hammer_width = 0.05, hammer_height = 0.05, hammer_mass = 120.6;
-  double velocity = 2.64, cx = 0.23, cy = 0.025;
-  bool notch_crack = true;
-  std::string beam, hammer, left, right;
+  double cx = 0.23, cy = 0.025;
+  std::string left, right;
   // What the history rows have seen, in order (kept in checkpoints).
   mutable double last_time = 0, last_momentum = 0, last_beam_momentum = 0;
   mutable double last_support_impulse = 0;
@@ -333,7 +322,7 @@ private:
 using lme_mpm::scenes::DropWeight;
 LME_MPM_REGISTER_SCENE(DropWeight, "drop weight",
                        "a notched beam on two supports struck at mid-span by a hammer "
-                       "(Scene/Impact velocity), in contact or on one velocity field; "
+                       "(Impact velocity), in contact or on one velocity field; "
                        "writes the bodies' shapes, the hammer's "
                        "velocity and density, reports the peak impact and reaction "
                        "forces and their times.")

@@ -65,6 +65,61 @@ void set_body_entry(ParameterHandler &prm, const unsigned int n_bodies,
             owner, " for body '" + body + "'");
 }
 
+EntryWriter::EntryWriter(ParameterHandler &prm, const ParameterHandler &declarations,
+                         const unsigned int n_bodies, const unsigned int n_constraints)
+    : prm(prm), declarations(declarations), bodies(n_bodies), constraints(n_constraints)
+{
+}
+
+void EntryWriter::set(const std::string &entry, const std::string &value,
+                      const std::string &owner, const std::string &why)
+{
+  std::vector<std::string> path = input::split(entry, '/');
+  const std::string key         = path.back();
+  path.pop_back();
+  set_entry(prm, entry, value, declarations.get(path, key), owner, why);
+}
+
+void EntryWriter::set_body(const std::string &body, const std::string &entry,
+                           const std::string &value, const std::string &owner)
+{
+  set(input::subsection_name("Body", this->body(body, owner)) + "/" + entry, value, owner,
+      " for body '" + body + "'");
+}
+
+std::string EntryWriter::get(const std::string &entry) const
+{
+  std::vector<std::string> path = input::split(entry, '/');
+  const std::string key         = path.back();
+  path.pop_back();
+  return input::trim(prm.get(path, key));
+}
+
+unsigned int EntryWriter::body(const std::string &name, const std::string &owner) const
+{
+  return find_body(prm, bodies, name, owner);
+}
+
+bool EntryWriter::has_body(const std::string &name) const
+{
+  return body_number(prm, bodies, name) < bodies;
+}
+
+unsigned int EntryWriter::constraint(const std::string &name,
+                                     const std::string &owner) const
+{
+  for (unsigned int c = 0; c < constraints; ++c)
+    if (get("Boundary conditions/" + input::subsection_name("Constraint", c) + "/Name") ==
+        name)
+      return c;
+  AssertThrow(false,
+              ExcBadInput(owner, "no Boundary conditions/Constraint N/Name is '" + name +
+                                     "' (Boundary conditions/Number of "
+                                     "constraints = " +
+                                     std::to_string(constraints) + ")"));
+  return constraints;
+}
+
 template <int dim>
 void declare_scene_parameters(ParameterHandler &prm)
 {

@@ -15,14 +15,12 @@ std::string number(const double x)
   return s.str();
 }
 
-void set_notch_crack(ParameterHandler &prm, const unsigned int n_bodies,
-                     const std::string &body, const std::string &polyline,
-                     const std::string &owner)
+void set_notch_crack(EntryWriter &writer, const std::string &body,
+                     const std::string &polyline, const std::string &owner)
 {
-  set_entry(prm, "Cracks/Polylines", polyline, "", owner);
-  set_entry(prm, "Cracks/Grow with erosion", "false", "true", owner);
-  set_entry(prm, "Cracks/Body", std::to_string(find_body(prm, n_bodies, body, owner) + 1),
-            "1", owner);
+  writer.set("Cracks/Polylines", polyline, owner);
+  writer.set("Cracks/Grow with erosion", "false", owner);
+  writer.set("Cracks/Body", std::to_string(writer.body(body, owner) + 1), owner);
 }
 
 template <int dim>
@@ -79,26 +77,6 @@ unsigned int body_index(const SceneState<dim> &state, const std::string &name,
       return b;
   AssertThrow(false, ExcBadInput(entry, "no Body N/Name is '" + name + "'"));
   return 0;
-}
-
-unsigned int find_constraint(ParameterHandler &prm, const unsigned int n_constraints,
-                             const std::string &name, const std::string &owner)
-{
-  prm.enter_subsection("Boundary conditions");
-  unsigned int found = n_constraints;
-  for (unsigned int c = 0; c < n_constraints && found == n_constraints; ++c)
-  {
-    prm.enter_subsection(input::subsection_name("Constraint", c));
-    if (input::trim(prm.get("Name")) == name)
-      found = c;
-    prm.leave_subsection();
-  }
-  prm.leave_subsection();
-  AssertThrow(found < n_constraints,
-              ExcBadInput(owner, "no Boundary conditions/Constraint N/Name is '" + name +
-                                     "' (Boundary conditions/Number of constraints = " +
-                                     std::to_string(n_constraints) + ")"));
-  return found;
 }
 
 template <int dim>

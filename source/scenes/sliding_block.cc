@@ -1,4 +1,5 @@
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/base/parameters.h>
 #include <lme_mpm/scenes/scene.h>
 #include <lme_mpm/scenes/scene_tools.h>
 
@@ -20,45 +21,56 @@ template <int dim>
 class SlidingBlock : public Scene<dim>
 {
 public:
+  /// The scene's entries, declared and read from this one list.
+  struct Entries
+  {
+    double angle = 30, gravity = 9.81;
+    std::string block;
+    void entries(EntryList &list)
+    {
+      list.add("Incline angle", angle, "30", Patterns::Double(),
+               "Angle (degrees) between gravity and the slab's normal (+y), in [0, 90).");
+      list.add("Gravity", gravity, "9.81", Patterns::Double(),
+               "Magnitude of gravity (m/s^2), positive.");
+      list.add("Block", block, "block", Patterns::Anything(),
+               "The Body N/Name of the block.");
+    }
+  };
   static void declare_parameters(ParameterHandler &prm)
   {
-    prm.declare_entry("Incline angle", "30", Patterns::Double(),
-                      "Sliding block: angle (degrees) between gravity and the slab's "
-                      "normal (+y), in [0, 90).");
-    prm.declare_entry("Gravity", "9.81", Patterns::Double(),
-                      "Sliding block: magnitude of gravity (m/s^2), positive.");
-    prm.declare_entry("Block", "block", Patterns::Anything(),
-                      "Sliding block: the Body N/Name of the block.");
+    EntryList::declare<Entries>(prm);
   }
 
   SlidingBlock(ParameterHandler &prm, const SceneContext<dim> &)
+      : in(EntryList::parse<Entries>(prm))
   {
-    angle   = prm.get_double("Incline angle");
-    gravity = prm.get_double("Gravity");
-    block   = input::trim(prm.get("Block"));
-    // The exact distance needs the block's friction (Contact/Friction coefficient).
+    // The exact distance needs the block's friction (Contact/Friction coefficient),
+    // read from the top level: this constructor runs in Scene/sliding block.
     prm.leave_subsection();
-    prm.enter_subsection("Contact");
-    friction = prm.get_double("Friction coefficient");
     prm.leave_subsection();
+    friction =
+        prm.get_double(std::vector<std::string>{"Contact"}, "Friction coefficient");
     prm.enter_subsection("Scene");
-    input::require_range(angle, 0, 90, false, "Scene/Incline angle");
-    AssertThrow(angle < 90,
-                ExcBadInput("Scene/Incline angle", "must be below 90 degrees"));
-    AssertThrow(std::isfinite(gravity) && gravity > 0,
-                ExcBadInput("Scene/Gravity", "must be finite and positive"));
+    prm.enter_subsection("sliding block");
+    in.block = input::trim(in.block);
+    input::require_range(in.angle, 0, 90, false, entry("Incline angle"));
+    AssertThrow(in.angle < 90,
+                ExcBadInput(entry("Incline angle"), "must be below 90 degrees"));
+    AssertThrow(std::isfinite(in.gravity) && in.gravity > 0,
+                ExcBadInput(entry("Gravity"), "must be finite and positive"));
   }
 
   void adjust(RunParameters<dim> &run) const override
   {
-    AssertThrow(run.body_force.norm() == 0,
-                ExcBadInput("Problem/Body force",
-                            "the sliding-block scene sets gravity from Scene/Incline "
-                            "angle and Scene/Gravity: leave it at 0"));
-    const double theta = angle * M_PI / 180;
+    AssertThrow(
+        run.body_force.norm() == 0,
+        ExcBadInput("Problem/Body force", "the sliding-block scene sets gravity from " +
+                                              entry("Incline angle") + " and " +
+                                              entry("Gravity") + ": leave it at 0"));
+    const double theta = in.angle * M_PI / 180;
     run.body_force     = Tensor<1, dim>();
-    run.body_force[0]  = gravity * std::sin(theta);
-    run.body_force[1]  = -gravity * std::cos(theta);
+    run.body_force[0]  = in.gravity * std::sin(theta);
+    run.body_force[1]  = -in.gravity * std::cos(theta);
   }
 
   void check(const SceneState<dim> &state) const override { (void)block_index(state); }
@@ -88,8 +100,8 @@ public:
    */
   double exact_distance(const double T, const double ramp) const
   {
-    const double theta = angle * M_PI / 180;
-    const double a     = gravity * (std::sin(theta) - friction * std::cos(theta));
+    const double theta = in.angle * M_PI / 180;
+    const double a     = in.gravity * (std::sin(theta) - friction * std::cos(theta));
     if (!(a > 0))
       return 0;
     if (ramp <= 0)
@@ -100,19 +112,23 @@ public:
   }
 
 private:
+  static std::string entry(const std::string &name)
+  {
+    return "Scene/sliding block/" + name;
+  }
   unsigned int block_index(const SceneState<dim> &state) const
   {
-    return body_index(state, block, "Scene/Block");
+    return body_index(state, in.block, entry("Block"));
   }
 
-  double angle = 30, gravity = 9.81, friction = 0;
-  std::string block;
+  Entries in;
+  double friction = 0;
 };
 } // namespace scenes
 } // namespace lme_mpm
 
 using lme_mpm::scenes::SlidingBlock;
 LME_MPM_REGISTER_SCENE(SlidingBlock, "sliding block",
-                       "a block on a slab along x under gravity tilted by Scene/Incline "
+                       "a block on a slab along x under gravity tilted by the Incline "
                        "angle; reports sliding_distance, the block's mean displacement "
                        "along the slab (m).")

@@ -207,32 +207,23 @@ private:
                                         point_to_string(particles.position[p]), s.str()));
   }
 
-  /// Set-up of particle p: h, the smallest spacing of its cell (the unit of the scaled
-  /// coordinates), and the n nodes whose support holds x (returns n) into @p nodes,
-  /// their y_I, a_I and w_I into @p scratch. On a uniform grid (Graded false) the
-  /// supports all have radius R = radius_over_h h; on a graded one node I reaches
-  /// R_I = radius_over_h h_I. Stops the run if x is outside the grid or not strictly
-  /// inside the nodes' hull.
+  /**
+   * The index box of the nodes within [x - R, x + R] in each direction (R the widest
+   * support that can reach x), and their scaled offsets (and weights, on a graded
+   * grid) in @p scratch: first[d] and count[d] along each direction d.
+   */
   template <bool Graded>
-  unsigned int set_up(const ParticleStore<dim> &particles, const std::size_t p,
-                      unsigned int *nodes, Scratch &scratch, double &h) const
+  void index_box(const Point<dim> &x, const double h,
+                 std::array<unsigned int, dim> &first,
+                 std::array<unsigned int, dim> &count, Scratch &scratch) const
   {
-    const Point<dim> &x = particles.position[p];
-    std::array<unsigned int, dim> first, count, cell;
-    if (!grid.locate(x, cell))
-      fail(particles, p, "the particle is outside the grid");
-    h = std::numeric_limits<double>::max();
-    for (unsigned int d = 0; d < dim; ++d)
-      h = std::min(h, grid.spacing(d, cell[d]));
     const double inv_h = 1 / h;
     // The widest support that can reach x: R_max bounds every R_I.
-    const double R  = Graded ? R_max : radius_over_h * h;
-    const double R2 = radius_over_h * radius_over_h;
-    auto &y1d       = scratch.y1d;
-    auto &w1d       = scratch.w1d;
-
-    // Index box of the nodes within [x - R, x + R] in each direction; on a graded grid
-    // trimmed at both ends to nodes that reach x along d (h_I <= its spacing along d).
+    const double R = Graded ? R_max : radius_over_h * h;
+    auto &y1d      = scratch.y1d;
+    auto &w1d      = scratch.w1d;
+    // On a graded grid trimmed at both ends to nodes that reach x along d (h_I <= its
+    // spacing along d).
     for (unsigned int d = 0; d < dim; ++d)
     {
       const auto &c   = grid.coordinates(d);
@@ -268,6 +259,29 @@ private:
         }
       }
     }
+  }
+
+  /// Set-up of particle p: h, the smallest spacing of its cell (the unit of the scaled
+  /// coordinates), and the n nodes whose support holds x (returns n) into @p nodes,
+  /// their y_I, a_I and w_I into @p scratch. On a uniform grid (Graded false) the
+  /// supports all have radius R = radius_over_h h; on a graded one node I reaches
+  /// R_I = radius_over_h h_I. Stops the run if x is outside the grid or not strictly
+  /// inside the nodes' hull.
+  template <bool Graded>
+  unsigned int set_up(const ParticleStore<dim> &particles, const std::size_t p,
+                      unsigned int *nodes, Scratch &scratch, double &h) const
+  {
+    const Point<dim> &x = particles.position[p];
+    std::array<unsigned int, dim> first, count, cell;
+    if (!grid.locate(x, cell))
+      fail(particles, p, "the particle is outside the grid");
+    h = std::numeric_limits<double>::max();
+    for (unsigned int d = 0; d < dim; ++d)
+      h = std::min(h, grid.spacing(d, cell[d]));
+    const double R2 = radius_over_h * radius_over_h;
+    auto &y1d       = scratch.y1d;
+    auto &w1d       = scratch.w1d;
+    index_box<Graded>(x, h, first, count, scratch);
 
     // Candidates inside their supports, in increasing node index order. q is |y_I|^2
     // weighted by w_I = (h / h_I)^2, with h_I the smallest of the node's spacings.

@@ -121,8 +121,11 @@ void GridTransfer<dim>::particles_to_grid(
         raise_to(reach_above, chunk_above);
       });
   unsigned int new_below = reach_below.load(), new_above = reach_above.load();
-  if (agree_reach)
-    agree_reach(new_below, new_above);
+  if (ranks)
+  {
+    new_below = static_cast<unsigned int>(ranks->max(new_below));
+    new_above = static_cast<unsigned int>(ranks->max(new_above));
+  }
   if (new_below > below || new_above > above)
   {
     slab_below = std::max(below, new_below), slab_above = std::max(above, new_above);

@@ -3,7 +3,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <lme_mpm/base/input.h>
-#include <lme_mpm/solver/simulation.h>
+#include <lme_mpm/simulation/run.h>
 
 #include <iostream>
 

@@ -25,6 +25,11 @@ std::vector<double> parse_doubles(const std::string &text, const std::string &en
 template <int dim>
 dealii::Point<dim> parse_point(const std::string &text, const std::string &entry);
 
+/// Exactly @p n comma-separated names ("left, right"), trimmed; throws ExcBadInput
+/// naming @p entry otherwise.
+std::vector<std::string> parse_names(const std::string &text, unsigned int n,
+                                     const std::string &entry);
+
 /// "name(a, b, c)" -> name and arguments (a bare "name" gives no arguments).
 struct Call
 {

@@ -31,6 +31,24 @@ public:
 
   bool parsing() const { return mode == Mode::parse; }
 
+  /// Declares the entries of @p Entries (a struct with entries(EntryList &)) in the
+  /// current subsection of @p prm.
+  template <class Entries>
+  static void declare(dealii::ParameterHandler &prm)
+  {
+    EntryList list(prm, Mode::declare);
+    Entries().entries(list);
+  }
+  /// Reads them from the current subsection of @p prm.
+  template <class Entries>
+  static Entries parse(dealii::ParameterHandler &prm)
+  {
+    Entries values;
+    EntryList list(prm, Mode::parse);
+    values.entries(list);
+    return values;
+  }
+
   void enter(const std::string &section) { prm.enter_subsection(section); }
   void leave() { prm.leave_subsection(); }
 

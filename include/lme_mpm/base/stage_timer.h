@@ -50,6 +50,11 @@ public:
 
   /// Seconds per stage, by name.
   std::map<std::string, double> seconds() const;
+  /// Seconds of the stage with handle @p stage.
+  double seconds(const unsigned int stage) const
+  {
+    return std::chrono::duration<double>(elapsed[stage]).count();
+  }
   /// Adds "stage_seconds_<name>" (lower case, words joined by '_') for every stage
   /// that ran.
   void add_results(std::map<std::string, double> &results) const;

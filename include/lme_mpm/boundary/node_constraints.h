@@ -5,6 +5,7 @@
 #include <deal.II/base/parsed_function.h>
 #include <deal.II/base/tensor.h>
 
+#include <lme_mpm/base/rank_reductions.h>
 #include <lme_mpm/grid/background_grid.h>
 #include <lme_mpm/grid/field_layout.h>
 
@@ -67,12 +68,11 @@ public:
    * displacement after a step with displacement rate @p rate. Returns the work of the
    * reaction over the step: the mean of the old and new reaction times the imposed
    * displacement increment (exact for the central-difference scheme), added to
-   * @p work node by node. Only the nodes flagged in @p owned_nodes count (all if
+   * @p work node by node. Only the nodes @p ranks says this rank owns count (all if
    * null): in a distributed run each rank sums its own, and finish_reaction() takes
    * the sum over the ranks.
    */
-  void update_reaction(const FieldLayout &layout,
-                       const std::vector<std::uint8_t> *owned_nodes,
+  void update_reaction(const FieldLayout &layout, const RankReductions *ranks,
                        const std::vector<double> &mass,
                        const std::vector<Tensor<1, dim>> &acceleration,
                        const std::vector<Tensor<1, dim>> &force,
@@ -146,15 +146,10 @@ public:
                             double t, double h) const;
 
   /**
-   * Distributed runs: reactions are summed over the nodes this rank owns
-   * (@p owned_nodes, per grid node), then over the ranks by @p sum_over_ranks.
+   * Distributed runs: reactions are summed over the nodes this rank owns, then over
+   * the ranks.
    */
-  void set_distribution(const std::vector<std::uint8_t> *owned,
-                        std::function<void(std::vector<double> &)> sum)
-  {
-    owned_nodes    = owned;
-    sum_over_ranks = std::move(sum);
-  }
+  void set_ranks(const RankReductions &r) { ranks = &r; }
 
   /// Updates every set's reaction and displacement; returns their work over the step.
   double update_reactions(const FieldLayout &layout, const std::vector<double> &mass,
@@ -177,8 +172,7 @@ public:
 private:
   std::vector<std::unique_ptr<NodeConstraint<dim>>> sets;
   std::vector<unsigned int> nodes;
-  const std::vector<std::uint8_t> *owned_nodes = nullptr;
-  std::function<void(std::vector<double> &)> sum_over_ranks;
+  const RankReductions *ranks = nullptr;
 };
 } // namespace lme_mpm
 

@@ -3,6 +3,7 @@
 
 #include <deal.II/base/tensor.h>
 
+#include <lme_mpm/base/dealii.h>
 #include <lme_mpm/particles/particle_store.h>
 #include <lme_mpm/solver/grid_transfer.h>
 
@@ -11,8 +12,6 @@
 
 namespace lme_mpm
 {
-using namespace dealii;
-
 /// Two bodies' fields at a node in contact, as the exchange sees them.
 template <int dim>
 struct ExchangePair

@@ -3,11 +3,14 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <lme_mpm/base/rank_reductions.h>
+#include <lme_mpm/distributed/halo.h>
 #include <lme_mpm/grid/background_grid.h>
 #include <lme_mpm/particles/particle_store.h>
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -36,7 +39,7 @@ namespace lme_mpm
  * run (the test tests/mpi checks it).
  */
 template <int dim>
-class Decomposition
+class Decomposition : public RankReductions
 {
 public:
   explicit Decomposition(MPI_Comm comm = MPI_COMM_WORLD);
@@ -47,32 +50,11 @@ public:
   MPI_Comm communicator() const { return comm; }
 
   /**
-   * How far one step of a particle reads, in the lengths of the grid where it is:
-   * what partition() builds a halo from. On a graded grid the reach shrinks with the
-   * cells, so a halo in the fine cells is as many fine cells wide as a halo in the
-   * coarse cells is coarse ones.
-   */
-  struct Reach
-  {
-    /// Per grid node: how far from it the particles it couples to lie (m).
-    std::vector<double> node_radius;
-    /// Particle-node-particle passes: each reads the nodes within node_radius of the
-    /// particles read so far, then the particles within node_radius of those nodes.
-    unsigned int support_passes = 0;
-    /// Per cell (empty: none): how far a particle there reads other particles
-    /// directly (fracture neighbourhood and crack band), m; the farther of the two
-    /// particles' reaches counts.
-    std::vector<double> cell_radius;
-    /// Cells added all round: particles crossing cells within a step.
-    unsigned int margin_cells = 2;
-  };
-
-  /**
    * Partitions the cells of @p grid with p4est and sets up the halo @p reach asks
    * for around this rank's cells: support passes first, then the direct particle
    * reach, then the margin. One rank: everything is owned.
    */
-  void partition(const BackgroundGrid<dim> &grid, const Reach &reach);
+  void partition(const BackgroundGrid<dim> &grid, const HaloReach &reach);
 
   /// Owner rank of cell @p c (lexicographic index).
   unsigned int owner(const unsigned int c) const { return size > 1 ? cell_owner[c] : 0; }
@@ -81,7 +63,7 @@ public:
    * is (the last cell for nodes on the upper grid faces). That rank holds every
    * particle near the node, so the node's values are complete there.
    */
-  bool owns_node(const unsigned int n) const
+  bool owns_node(const unsigned int n) const override
   {
     return node_owned.empty() || node_owned[n] != 0;
   }
@@ -123,9 +105,9 @@ public:
   static std::size_t n_owned(const ParticleStore<dim> &particles);
 
   // Reductions over the ranks (no-ops on one rank).
-  double sum(double v) const;
-  void sum(std::vector<double> &v) const;
-  double max(double v) const;
+  double sum(double v) const override;
+  void sum(std::vector<double> &v) const override;
+  double max(double v) const override;
   unsigned long long sum(unsigned long long v) const;
   /// The smallest value over the ranks (and the rank that has it).
   unsigned long long min(unsigned long long v) const;
@@ -144,28 +126,11 @@ public:
   static std::size_t bytes_per_particle();
 
 private:
-  /// Cells within reach[d] cells (along each d) of a cell flagged in @p mask.
-  std::vector<std::uint8_t> dilate(const std::vector<std::uint8_t> &mask,
-                                   const std::array<unsigned int, dim> &reach) const;
-  /// The cells @p reach reads from the cells flagged in @p mask.
-  std::vector<std::uint8_t> reached(const std::vector<std::uint8_t> &mask,
-                                    const Reach &reach) const;
-  /// Cells per direction that cover a distance @p width from anywhere in a cell.
-  std::array<unsigned int, dim> cells_within(double width) const;
-  /// Sends @p out[r] to rank r; returns what the ranks sent here, in rank order.
-  std::vector<char> all_to_all(const std::vector<std::vector<char>> &out) const;
-  static void pack(const ParticleStore<dim> &particles, std::size_t p,
-                   std::vector<char> &buffer);
-  /// Appends the particles in @p buffer; their ghost flag is set to @p ghost.
-  static void unpack(const std::vector<char> &buffer, ParticleStore<dim> &particles,
-                     std::uint8_t ghost);
-  /// Keeps the particles with keep[p] != 0, in order.
-  static void compact(ParticleStore<dim> &particles,
-                      const std::vector<std::uint8_t> &keep);
-
   MPI_Comm comm;
   unsigned int size = 1, my_rank = 0;
   const BackgroundGrid<dim> *grid = nullptr;
+  /// The cells the halo reaches (set by partition()).
+  std::unique_ptr<HaloCells<dim>> halo;
   std::vector<unsigned int> cell_owner;
   std::vector<std::uint8_t> node_owned;
   /// Per cell: 1 if in this rank's halo (not owned).

@@ -5,6 +5,7 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <lme_mpm/base/dealii.h>
 #include <lme_mpm/grid/background_grid.h>
 #include <lme_mpm/grid/field_layout.h>
 #include <lme_mpm/particles/particle_store.h>
@@ -17,8 +18,6 @@
 
 namespace lme_mpm
 {
-using namespace dealii;
-
 /**
  * Explicit cracks (polylines, 2D) that split the grid's velocity field: a grid node
  * near a crack carries a second field, and a particle whose straight line to the node

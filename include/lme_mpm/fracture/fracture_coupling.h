@@ -3,6 +3,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <lme_mpm/base/rank_reductions.h>
 #include <lme_mpm/fracture/crack_set.h>
 #include <lme_mpm/fracture/fracture_model.h>
 #include <lme_mpm/fracture/neighbourhood.h>
@@ -42,14 +43,8 @@ public:
   void parse_parameters(ParameterHandler &prm, const MaterialSet<dim> &materials,
                         const BackgroundGrid<dim> &grid, double thickness);
 
-  /**
-   * The reduction that makes a length the largest over all MPI ranks (distributed
-   * runs; none: one rank).
-   */
-  void set_max_over_ranks(std::function<double(double)> f)
-  {
-    max_over_ranks = std::move(f);
-  }
+  /// Distributed runs: every rank searches neighbourhoods to the largest radius.
+  void set_ranks(const RankReductions &r) { ranks = &r; }
 
   /**
    * How far one fracture update reaches from a particle: the widest neighbourhood
@@ -128,8 +123,8 @@ private:
   static constexpr std::size_t unprepared = static_cast<std::size_t>(-1);
   std::size_t prepared_size               = unprepared;
   std::uint64_t prepared_version          = 0;
-  std::function<double(double)> max_over_ranks;
-  double radius = 0; ///< of the neighbourhood search
+  const RankReductions *ranks             = nullptr;
+  double radius                           = 0; ///< of the neighbourhood search
   /// Without a model that gives no trigger: rows only around the seeds.
   bool seeded_rows = false;
   /// A body's crack band reaches beyond its own cell: softening particles then read

@@ -3,14 +3,15 @@
 
 #include <deal.II/base/point.h>
 
+#include <lme_mpm/base/dealii.h>
+#include <lme_mpm/fracture/cube_bins.h>
+
 #include <cstdint>
 #include <functional>
 #include <vector>
 
 namespace lme_mpm
 {
-using namespace dealii;
-
 /**
  * The epsilon-neighbourhood of every particle: the particles within a radius,
  * itself included, in compressed rows. Given body ids, only particles of the
@@ -67,11 +68,27 @@ public:
   std::size_t n_rows() const { return rows; }
 
 private:
+  /// Flags in `wanted` the particles that take a row and lie within the radius of a
+  /// seed; cubes that hold no seed are skipped without looking at their particles.
+  void mark_rows_near_seeds(const std::vector<Point<dim>> &x, double radius,
+                            const std::vector<std::uint8_t> &seeds);
+  /**
+   * Fills and sorts the rows of the wanted particles with the neighbours that
+   * same(p, q) accepts. With @p roomy, every row gets room for all the particles of
+   * the cubes around it, so one pass over the candidates fills it (the distance and
+   * crack tests are the cost); otherwise (every particle has a row, and that room
+   * would be about 3 (2D) or 6 (3D) times the rows) a counting pass sizes them
+   * exactly.
+   */
+  template <class Same>
+  void fill_rows(const std::vector<Point<dim>> &x, double radius, const Same &same,
+                 bool roomy);
+
   // Row p is list[offsets[p], ends[p]); a row may have room beyond its end.
   std::vector<std::size_t> offsets, ends;
   std::vector<std::uint32_t> list;
   // Binning scratch, kept between builds.
-  std::vector<std::uint32_t> bin_of, bin_start, sorted;
+  CubeBins<dim> bins;
   std::vector<std::uint8_t> seeded, wanted;
   std::size_t rows = 0, pairs = 0;
 };

@@ -4,6 +4,7 @@
 #include <deal.II/base/bounding_box.h>
 #include <deal.II/base/point.h>
 
+#include <lme_mpm/base/dealii.h>
 #include <lme_mpm/base/registry.h>
 
 #include <functional>
@@ -13,8 +14,6 @@
 
 namespace lme_mpm
 {
-using namespace dealii;
-
 /**
  * A solid region of space, written in a parameter file as `name(a, b, ...)`, for
  * example `rectangle(0, 0, 1, 0.1)` or `slot(0, 0.5, 0.25, 0.01, 0)`. Bodies are a

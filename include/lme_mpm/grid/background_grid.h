@@ -8,14 +8,14 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/grid/tria.h>
 
+#include <lme_mpm/base/dealii.h>
+
 #include <array>
 #include <memory>
 #include <vector>
 
 namespace lme_mpm
 {
-using namespace dealii;
-
 /**
  * The fixed Cartesian background grid. deal.II owns the mesh (a
  * subdivided_hyper_rectangle, uniform or graded, with coloured boundary ids) and the

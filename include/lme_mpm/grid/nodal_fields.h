@@ -3,6 +3,7 @@
 
 #include <deal.II/base/tensor.h>
 
+#include <lme_mpm/base/dealii.h>
 #include <lme_mpm/base/parallel.h>
 #include <lme_mpm/grid/field_layout.h>
 
@@ -11,8 +12,6 @@
 
 namespace lme_mpm
 {
-using namespace dealii;
-
 /**
  * The nodal arrays of one step, indexed by field (see FieldLayout): mass, momentum
  * and mass-weighted acceleration from the particles, the displacement rate of the

@@ -5,13 +5,13 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
+#include <lme_mpm/base/dealii.h>
+
 #include <cstdint>
 #include <vector>
 
 namespace lme_mpm
 {
-using namespace dealii;
-
 /**
  * The particles, one array per field (structure of arrays), kept sorted by the
  * background cell that holds them so that the grid transfers sweep memory in order

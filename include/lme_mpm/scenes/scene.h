@@ -27,6 +27,56 @@ struct SceneContext
   unsigned int n_constraints = 0;
   /// Whether bodies get their own fields (Contact/Type is not 'none').
   bool contact = false;
+  /**
+   * Every entry as declared (defaults only, nothing parsed), for EntryWriter; valid
+   * while the scene is built and writes its entries.
+   */
+  const ParameterHandler *declarations = nullptr;
+};
+
+/**
+ * Writes entries of other subsections on behalf of a scene (a body's shape from a
+ * strip width, a roller's velocity): the scene expands its own entries into the
+ * generic ones. A scene never silently replaces what the user wrote: an entry the
+ * file left at its declared default (or gave the scene's value itself) takes the
+ * scene's value; any other value stops the run with a message naming both entries.
+ */
+class EntryWriter
+{
+public:
+  EntryWriter(ParameterHandler &prm, const ParameterHandler &declarations,
+              unsigned int n_bodies, unsigned int n_constraints);
+
+  /**
+   * Sets @p entry (a path from the top level, 'Cracks/Polylines') to @p value on
+   * behalf of scene entry @p owner; @p why is added to the error message after the
+   * owner.
+   */
+  void set(const std::string &entry, const std::string &value, const std::string &owner,
+           const std::string &why = "");
+  /// Sets @p entry ('Shape', 'Prescribed velocity/Function expression') of the body
+  /// named @p body.
+  void set_body(const std::string &body, const std::string &entry,
+                const std::string &value, const std::string &owner);
+  /// The value of @p entry (a path from the top level) now.
+  std::string get(const std::string &entry) const;
+
+  /// The index (N - 1) of the "Body N" named @p name; throws naming @p owner if none.
+  unsigned int body(const std::string &name, const std::string &owner) const;
+  /// True if a "Body N" is named @p name.
+  bool has_body(const std::string &name) const;
+  /// The index of the "Boundary conditions/Constraint N" named @p name; throws
+  /// naming @p owner if none.
+  unsigned int constraint(const std::string &name, const std::string &owner) const;
+  unsigned int n_constraints() const { return constraints; }
+
+  /// The handler, for scenes written against set_entries(ParameterHandler &).
+  ParameterHandler &handler() { return prm; }
+
+private:
+  ParameterHandler &prm;
+  const ParameterHandler &declarations;
+  unsigned int bodies, constraints;
 };
 
 /// What a scene sees at the end of a run.
@@ -63,9 +113,12 @@ public:
   /// is set up); throws ExcBadInput naming the entry on a conflict.
   virtual void adjust(RunParameters<dim> &) const {}
   /// Writes entries of other subsections that follow from the scene's own (a body's
-  /// shape from a strip width, a loading velocity) into @p prm, at its top level;
-  /// called right after the scene is built, before anything else reads the file.
-  /// Use set_body_entry(), which refuses to overwrite what the file gave.
+  /// shape from a strip width, a loading velocity) through @p writer; called right
+  /// after the scene is built, before anything else reads the file. The default calls
+  /// set_entries() on the handler.
+  virtual void write_entries(EntryWriter &writer) const { set_entries(writer.handler()); }
+  /// The earlier form of write_entries(): writes into @p prm at its top level with
+  /// set_body_entry(). Kept for scenes written against it.
   virtual void set_entries(ParameterHandler &) const {}
   /// Checks the scene against the set-up run (named bodies exist, ...); throws
   /// ExcBadInput naming the entry.
@@ -123,7 +176,8 @@ void set_entry(ParameterHandler &prm, const std::string &entry, const std::strin
                const std::string &declared_default, const std::string &owner,
                const std::string &why = "");
 
-/// Declares "Scene/Type" and every registered scene's entries beside it.
+/// Declares "Scene/Type" and every registered scene's entries in a subsection of
+/// "Scene" named after it.
 template <int dim>
 void declare_scene_parameters(ParameterHandler &prm);
 /// Builds the scene Scene/Type names.
@@ -136,11 +190,11 @@ std::unique_ptr<Scene<dim>> create_scene(ParameterHandler &prm,
  * Registers scene class template CLASS (templated on dim, constructed from
  * (ParameterHandler &, const SceneContext<dim> &) or the context alone, with an
  * optional static declare_parameters(ParameterHandler &)) as NAME for dim = 2 and 3.
- * Its entries go straight into subsection "Scene".
+ * Its entries go into subsection "Scene/NAME".
  */
 #define LME_MPM_REGISTER_SCENE(CLASS, NAME, DESCRIPTION)                                 \
   LME_MPM_REGISTER_PLUGIN_FOR_DIMS(::lme_mpm::SceneRegistry, scene, CLASS, NAME,         \
                                    DESCRIPTION,                                          \
-                                   ::lme_mpm::PluginEntries::caller_subsection)
+                                   ::lme_mpm::PluginEntries::own_subsection)
 
 #endif

@@ -34,9 +34,8 @@ std::string ramped_velocity(double vx, double vy, double ramp);
  * of set_entry()). A notch narrower than the shape functions' support needs one, or
  * the grid ties its faces together.
  */
-void set_notch_crack(ParameterHandler &prm, unsigned int n_bodies,
-                     const std::string &body, const std::string &polyline,
-                     const std::string &owner);
+void set_notch_crack(EntryWriter &writer, const std::string &body,
+                     const std::string &polyline, const std::string &owner);
 /// The damaged volume of @p body: sum of damage times volume over its particles (m^3
 /// in 3D, m^2 in 2D).
 template <int dim>
@@ -45,13 +44,6 @@ double damaged_volume(const ParticleStore<dim> &particles, unsigned int body);
 template <int dim>
 unsigned int body_index(const SceneState<dim> &state, const std::string &name,
                         const std::string &entry);
-/**
- * The "Boundary conditions/Constraint N" whose "Name" is @p name among the first
- * @p n_constraints (read from @p prm, at its top level); throws ExcBadInput naming
- * @p owner if none is.
- */
-unsigned int find_constraint(ParameterHandler &prm, unsigned int n_constraints,
-                             const std::string &name, const std::string &owner);
 /// The constrained node set named @p name; throws ExcBadInput naming @p entry if none.
 template <int dim>
 const NodeConstraint<dim> &constraint_named(const SceneState<dim> &state,

@@ -1,6 +1,11 @@
 #ifndef LME_MPM_SOLVER_EXPLICIT_NEWMARK_H
 #define LME_MPM_SOLVER_EXPLICIT_NEWMARK_H
 
+#include <deal.II/base/tensor.h>
+
+#include <lme_mpm/base/dealii.h>
+#include <lme_mpm/grid/nodal_fields.h>
+
 namespace lme_mpm
 {
 /**
@@ -28,6 +33,20 @@ struct ExplicitNewmark
   T corrected_velocity(const T &v, const T &a_old, const T &a_new, const double dt) const
   {
     return v + dt * ((1 - gamma) * a_old + gamma * a_new);
+  }
+
+  /**
+   * The velocity the corrector gives field @p F of @p nodes at the end of the step,
+   * lumped on the node: from its momentum and mass-weighted acceleration of the start
+   * of the step and its acceleration now (what contact compares and corrects).
+   */
+  template <int dim>
+  Tensor<1, dim> trial_velocity(const NodalFields<dim> &nodes, const unsigned int F,
+                                const double dt) const
+  {
+    return corrected_velocity(nodes.momentum[F] / nodes.mass[F],
+                              nodes.mass_acceleration[F] / nodes.mass[F],
+                              nodes.acceleration[F], dt);
   }
 };
 } // namespace lme_mpm

@@ -4,6 +4,7 @@
 #include <deal.II/base/parallel.h>
 #include <deal.II/base/tensor.h>
 
+#include <lme_mpm/base/rank_reductions.h>
 #include <lme_mpm/grid/background_grid.h>
 #include <lme_mpm/grid/nodal_fields.h>
 #include <lme_mpm/particles/particle_store.h>
@@ -79,18 +80,15 @@ public:
                            const Tensor<1, dim> &body_force, double max_move,
                            std::size_t &bad);
 
+  /**
+   * Distributed runs: the supports' reach in cell layers is made the same on every
+   * MPI rank (the largest), as the slabs fix the order in which a node sums its
+   * particles, which must not depend on which particles a rank holds.
+   */
+  void set_ranks(const RankReductions &r) { ranks = &r; }
+
   /// Bodies (flag per body index) whose motion is prescribed: the body force does no
   /// work on them.
-  /**
-   * Makes the supports' reach in cell layers the same on every MPI rank (the largest):
-   * the slabs fix the order in which a node sums its particles, which must not
-   * depend on which particles a rank holds.
-   */
-  void set_reach_agreement(std::function<void(unsigned int &, unsigned int &)> f)
-  {
-    agree_reach = std::move(f);
-  }
-
   void set_prescribed_bodies(const std::vector<std::uint8_t> &flags)
   {
     prescribed_body = flags;
@@ -208,7 +206,7 @@ private:
   // How many cell layers the supports have reached below and above their particles'
   // layers so far: the slab width of the scatter.
   unsigned int slab_below = 0, slab_above = 0;
-  std::function<void(unsigned int &, unsigned int &)> agree_reach;
+  const RankReductions *ranks = nullptr;
   /// Per particle: the displacement increment of the step.
   std::vector<Tensor<1, dim>> increment;
   std::vector<std::uint8_t> prescribed_body;

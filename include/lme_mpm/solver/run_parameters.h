@@ -4,14 +4,13 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
+#include <lme_mpm/base/dealii.h>
 #include <lme_mpm/base/parameters.h>
 
 #include <string>
 
 namespace lme_mpm
 {
-using namespace dealii;
-
 /// How many of each repeated subsection a parameter file declares (read first).
 struct ParameterCounts
 {

@@ -1,12 +1,12 @@
-#ifndef LME_MPM_SOLVER_CRACK_FACE_CONTACT_H
-#define LME_MPM_SOLVER_CRACK_FACE_CONTACT_H
+#ifndef LME_MPM_CONTACT_CRACK_FACE_CONTACT_H
+#define LME_MPM_CONTACT_CRACK_FACE_CONTACT_H
 
+#include <lme_mpm/contact/body_fields.h>
 #include <lme_mpm/fracture/crack_set.h>
 #include <lme_mpm/solver/explicit_newmark.h>
 #include <lme_mpm/solver/grid_transfer.h>
 
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 namespace lme_mpm
@@ -34,15 +34,12 @@ public:
   std::uint8_t *touched(std::size_t n_particles);
 
   /**
-   * Where the cracked body's field at a grid node is not the node's own index (with
-   * multi-field contact, another body may hold it): @p f maps grid node I to that
-   * field, or to FieldLayout::invalid where the body does not reach I this step.
-   * Without it the node's own field is the near face.
+   * With multi-field contact the cracked body's field at a grid node need not be the
+   * node's own index (another body may hold it): @p fields tells which it is, or that
+   * the body does not reach the node this step. Without it the node's own field is
+   * the near face.
    */
-  void set_near_field(std::function<unsigned int(unsigned int)> f)
-  {
-    near_field_of = std::move(f);
-  }
+  void set_body_fields(const BodyFields<dim> &fields) { body_fields = &fields; }
 
   /// Decides which faces are closed and makes their approaching rates equal.
   void on_rates(double mass_tolerance);
@@ -60,7 +57,7 @@ private:
   const CrackSet<dim> &cracks;
   GridTransfer<dim> &transfer;
   const ParticleStore<dim> &particles;
-  std::function<unsigned int(unsigned int)> near_field_of;
+  const BodyFields<dim> *body_fields = nullptr;
   /// Per crack node this step: the near face's field (see set_near_field()).
   std::vector<unsigned int> near;
   std::vector<std::uint8_t> touches_crack, faces_closed;

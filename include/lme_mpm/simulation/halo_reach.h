@@ -1,8 +1,8 @@
-#ifndef LME_MPM_SOLVER_HALO_REACH_H
-#define LME_MPM_SOLVER_HALO_REACH_H
+#ifndef LME_MPM_SIMULATION_HALO_REACH_H
+#define LME_MPM_SIMULATION_HALO_REACH_H
 
 #include <lme_mpm/contact/body_contact.h>
-#include <lme_mpm/distributed/decomposition.h>
+#include <lme_mpm/distributed/halo.h>
 #include <lme_mpm/fracture/fracture_coupling.h>
 #include <lme_mpm/grid/background_grid.h>
 #include <lme_mpm/shape_functions/shape_function.h>
@@ -11,7 +11,7 @@ namespace lme_mpm
 {
 /**
  * What one explicit step of a particle reads, for the halo of a distributed run
- * (Decomposition::partition). Its nodes, the particles sharing those nodes, and theirs
+ * (Decomposition::partition, HaloCells). Its nodes, the particles sharing those nodes, and theirs
  * again (strains from nodal velocities, then forces from the stresses): four
  * support radii, two particle-node-particle passes. Each consistent-mass correction
  * pass adds a support there and back in the predictor and in the corrector, the
@@ -25,7 +25,7 @@ namespace lme_mpm
  * would be coarse cells where the grid is coarse.
  */
 template <int dim>
-typename Decomposition<dim>::Reach
+HaloReach
 halo_reach(const BackgroundGrid<dim> &grid, const ShapeFunction<dim> &shape_function,
            const FractureCoupling<dim> &fracture, const BodyContact<dim> &contact,
            unsigned int mass_corrections);

@@ -1,7 +1,7 @@
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/base/plugin_libraries.h>
-#include <lme_mpm/solver/run.h>
-#include <lme_mpm/solver/simulation.h>
+#include <lme_mpm/simulation/run.h>
+#include <lme_mpm/simulation/simulation.h>
 
 #include <filesystem>
 

@@ -1,4 +1,4 @@
-#include <lme_mpm/solver/crack_face_contact.h>
+#include <lme_mpm/contact/crack_face_contact.h>
 
 namespace lme_mpm
 {
@@ -29,7 +29,8 @@ void CrackFaceContact<dim>::on_rates(const double mass_tolerance)
   // entries written and read), summed in the scatter's order.
   near.resize(cracks.n_crack_nodes());
   for (unsigned int J = 0; J < cracks.n_crack_nodes(); ++J)
-    near[J] = near_field_of ? near_field_of(cracks.primary_of(J)) : cracks.primary_of(J);
+    near[J] = body_fields ? body_fields->field_of_body(cracks.primary_of(J), cracks.body())
+                          : cracks.primary_of(J);
   nodal_displacement.resize(nodes.mass.size());
   for (unsigned int J = 0; J < cracks.n_crack_nodes(); ++J)
   {
@@ -89,12 +90,7 @@ void CrackFaceContact<dim>::on_accelerations(const ExplicitNewmark &newmark,
   NodalFields<dim> &nodes = transfer.nodes();
   equalise(
       nodes.acceleration,
-      [&](const unsigned int I)
-      {
-        return newmark.corrected_velocity(nodes.momentum[I] / nodes.mass[I],
-                                          nodes.mass_acceleration[I] / nodes.mass[I],
-                                          nodes.acceleration[I], dt);
-      },
+      [&](const unsigned int I) { return newmark.trial_velocity(nodes, I, dt); },
       newmark.gamma * dt);
 }
 

@@ -1,6 +1,6 @@
 #include <deal.II/base/utilities.h>
 
-#include <lme_mpm/solver/halo_reach.h>
+#include <lme_mpm/simulation/halo_reach.h>
 
 #include <algorithm>
 #include <cmath>
@@ -9,12 +9,12 @@
 namespace lme_mpm
 {
 template <int dim>
-typename Decomposition<dim>::Reach
+HaloReach
 halo_reach(const BackgroundGrid<dim> &grid, const ShapeFunction<dim> &shape_function,
            const FractureCoupling<dim> &fracture, const BodyContact<dim> &contact,
            const unsigned int mc)
 {
-  typename Decomposition<dim>::Reach reach;
+  HaloReach reach;
   // In support radii; contact.reach() counts them too.
   const double supports = 4 + 4 * mc + (mc > 0 ? 1 : 0) + contact.reach(1.0);
   reach.support_passes  = static_cast<unsigned int>(std::ceil(supports / 2 - 1e-9));
@@ -61,11 +61,11 @@ halo_reach(const BackgroundGrid<dim> &grid, const ShapeFunction<dim> &shape_func
   return reach;
 }
 
-template Decomposition<2>::Reach halo_reach(const BackgroundGrid<2> &,
+template HaloReach halo_reach(const BackgroundGrid<2> &,
                                             const ShapeFunction<2> &,
                                             const FractureCoupling<2> &,
                                             const BodyContact<2> &, unsigned int);
-template Decomposition<3>::Reach halo_reach(const BackgroundGrid<3> &,
+template HaloReach halo_reach(const BackgroundGrid<3> &,
                                             const ShapeFunction<3> &,
                                             const FractureCoupling<3> &,
                                             const BodyContact<3> &, unsigned int);

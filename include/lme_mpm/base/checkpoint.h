@@ -1,5 +1,5 @@
-#ifndef LME_MPM_SOLVER_CHECKPOINT_H
-#define LME_MPM_SOLVER_CHECKPOINT_H
+#ifndef LME_MPM_BASE_CHECKPOINT_H
+#define LME_MPM_BASE_CHECKPOINT_H
 
 #include <lme_mpm/base/archive.h>
 

@@ -1,0 +1,31 @@
+#ifndef LME_MPM_BASE_RANK_REDUCTIONS_H
+#define LME_MPM_BASE_RANK_REDUCTIONS_H
+
+#include <vector>
+
+namespace lme_mpm
+{
+/**
+ * What the parts of a step need from the split of a run over MPI ranks: sums and
+ * maxima over the ranks, and which grid nodes this rank reports (so that a node's
+ * value, complete only where its owner holds every particle near it, is counted
+ * once). A part that sums reactions or contact forces, or agrees on a length, is
+ * handed this interface and never the driver; on one rank every reduction returns
+ * its argument and every node is this rank's.
+ */
+class RankReductions
+{
+public:
+  virtual ~RankReductions() = default;
+  /// The sum over the ranks.
+  virtual double sum(double v) const = 0;
+  /// The sums over the ranks, element by element, in place.
+  virtual void sum(std::vector<double> &v) const = 0;
+  /// The largest value over the ranks.
+  virtual double max(double v) const = 0;
+  /// True if this rank reports grid node @p n (its owner).
+  virtual bool owns_node(unsigned int n) const = 0;
+};
+} // namespace lme_mpm
+
+#endif

@@ -1,0 +1,136 @@
+#include "particle_messages.h"
+
+#include <cstring>
+#include <limits>
+
+namespace lme_mpm
+{
+namespace particle_messages
+{
+namespace
+{
+/// Calls f(field, bytes of one element) for every field of the store, in order.
+template <int dim, class F>
+void for_fields(const ParticleStore<dim> &particles, F &&f)
+{
+  // for_each_field is the one list of fields; it only reads here.
+  const_cast<ParticleStore<dim> &>(particles).for_each_field(
+      [&](auto &field)
+      {
+        using T = typename std::decay_t<decltype(field)>::value_type;
+        f(field, sizeof(T));
+      });
+}
+} // namespace
+
+template <int dim>
+std::size_t bytes_per_particle()
+{
+  ParticleStore<dim> probe;
+  std::size_t bytes = 0;
+  for_fields(probe, [&](const auto &, const std::size_t b) { bytes += b; });
+  return bytes;
+}
+
+template <int dim>
+void pack(const ParticleStore<dim> &particles, const std::size_t p,
+          std::vector<char> &buffer)
+{
+  // One resize per particle: the per-field ones cost more than the copies.
+  static const std::size_t total = bytes_per_particle<dim>();
+  char *at                       = nullptr;
+  {
+    const std::size_t end = buffer.size();
+    buffer.resize(end + total);
+    at = buffer.data() + end;
+  }
+  for_fields(particles,
+             [&](const auto &field, const std::size_t bytes)
+             {
+               std::memcpy(at, &field[p], bytes);
+               at += bytes;
+             });
+}
+
+template <int dim>
+void unpack(const std::vector<char> &buffer, ParticleStore<dim> &particles,
+            const std::uint8_t ghost)
+{
+  const std::size_t bytes = bytes_per_particle<dim>();
+  AssertThrow(buffer.size() % bytes == 0, ExcInternalError());
+  const std::size_t n = buffer.size() / bytes, first = particles.size();
+  particles.resize(first + n);
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < n; ++k)
+    particles.for_each_field(
+        [&](auto &field)
+        {
+          using T = typename std::decay_t<decltype(field)>::value_type;
+          std::memcpy(&field[first + k], buffer.data() + at, sizeof(T));
+          at += sizeof(T);
+        });
+  for (std::size_t p = first; p < first + n; ++p)
+    particles.ghost[p] = ghost;
+}
+
+template <int dim>
+void compact(ParticleStore<dim> &particles, const std::vector<std::uint8_t> &keep)
+{
+  const std::size_t n = particles.size();
+  std::size_t kept    = 0;
+  particles.for_each_field(
+      [&](auto &field)
+      {
+        kept = 0;
+        for (std::size_t p = 0; p < n; ++p)
+          if (keep[p])
+            field[kept++] = field[p];
+      });
+  particles.resize(kept);
+}
+
+std::size_t displacements(const std::vector<int> &counts, std::vector<int> &at)
+{
+  std::size_t total = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r)
+  {
+    at[r] = static_cast<int>(total);
+    total += counts[r];
+  }
+  return total;
+}
+
+std::vector<char> all_to_all(MPI_Comm comm, const std::vector<std::vector<char>> &out)
+{
+  const std::size_t size = out.size();
+  std::vector<int> send_counts(size), recv_counts(size), send_at(size), recv_at(size);
+  std::vector<char> send;
+  for (unsigned int r = 0; r < size; ++r)
+  {
+    AssertThrow(out[r].size() < std::size_t(std::numeric_limits<int>::max()) / 2,
+                ExcMessage("a particle message over 1 GB: use more ranks"));
+    send_counts[r] = static_cast<int>(out[r].size());
+    send_at[r]     = static_cast<int>(send.size());
+    send.insert(send.end(), out[r].begin(), out[r].end());
+  }
+  MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, comm);
+  const std::size_t total = displacements(recv_counts, recv_at);
+  AssertThrow(total < std::size_t(std::numeric_limits<int>::max()),
+              ExcMessage("a rank receives over 2 GB of particles in one step: use more "
+                         "ranks"));
+  std::vector<char> received(total);
+  MPI_Alltoallv(send.data(), send_counts.data(), send_at.data(), MPI_CHAR,
+                received.data(), recv_counts.data(), recv_at.data(), MPI_CHAR, comm);
+  return received;
+}
+
+template std::size_t bytes_per_particle<2>();
+template std::size_t bytes_per_particle<3>();
+template void pack(const ParticleStore<2> &, std::size_t, std::vector<char> &);
+template void pack(const ParticleStore<3> &, std::size_t, std::vector<char> &);
+template void unpack(const std::vector<char> &, ParticleStore<2> &, std::uint8_t);
+template void unpack(const std::vector<char> &, ParticleStore<3> &, std::uint8_t);
+template void compact(ParticleStore<2> &, const std::vector<std::uint8_t> &);
+template void compact(ParticleStore<3> &, const std::vector<std::uint8_t> &);
+} // namespace particle_messages
+} // namespace lme_mpm

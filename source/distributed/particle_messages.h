@@ -1,0 +1,43 @@
+#ifndef LME_MPM_DISTRIBUTED_PARTICLE_MESSAGES_H
+#define LME_MPM_DISTRIBUTED_PARTICLE_MESSAGES_H
+
+// Private to the library (not installed): particles packed into MPI messages.
+
+#include <deal.II/base/mpi.h>
+
+#include <lme_mpm/particles/particle_store.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace lme_mpm
+{
+/**
+ * Particles as bytes: every field of the store (ParticleStore::for_each_field, the one
+ * list of fields) copied in order, so a particle arrives as it left.
+ */
+namespace particle_messages
+{
+/// Bytes one particle takes in a message.
+template <int dim>
+std::size_t bytes_per_particle();
+/// Appends particle @p p of @p particles to @p buffer.
+template <int dim>
+void pack(const ParticleStore<dim> &particles, std::size_t p, std::vector<char> &buffer);
+/// Appends the particles in @p buffer to @p particles with their ghost flag @p ghost.
+template <int dim>
+void unpack(const std::vector<char> &buffer, ParticleStore<dim> &particles,
+            std::uint8_t ghost);
+/// Keeps the particles with keep[p] != 0, in order.
+template <int dim>
+void compact(ParticleStore<dim> &particles, const std::vector<std::uint8_t> &keep);
+
+/// Where each rank's piece starts in a message of pieces @p counts long; the total.
+std::size_t displacements(const std::vector<int> &counts, std::vector<int> &at);
+/// Sends @p out[r] to rank r of @p comm; returns what the ranks sent here, in rank
+/// order.
+std::vector<char> all_to_all(MPI_Comm comm, const std::vector<std::vector<char>> &out);
+} // namespace particle_messages
+} // namespace lme_mpm
+
+#endif

@@ -1,0 +1,79 @@
+#include <lme_mpm/base/format.h>
+#include <lme_mpm/base/input.h>
+#include <lme_mpm/simulation/run_guard.h>
+
+#include <cmath>
+
+namespace lme_mpm
+{
+template <int dim>
+void RunGuard<dim>::stop_if_lost(const std::size_t p, const unsigned int step,
+                                 const double t) const
+{
+  stop_if_any(p, step, t,
+              [](std::size_t)
+              {
+                return "the particle left the background grid (enlarge the grid, or the "
+                       "run is unstable: lower the CFL number)";
+              });
+}
+
+template <int dim>
+void RunGuard<dim>::stop_if_unstable(const std::size_t p, const unsigned int step,
+                                     const double t) const
+{
+  stop_if_any(p, step, t,
+              [this](const std::size_t bad) -> std::string
+              {
+                if (!std::isfinite(particles.velocity[bad].norm_square()))
+                  return "non-finite velocity (the run is unstable: lower the CFL "
+                         "number)";
+                if (!(particles.density[bad] > 0))
+                  return "non-positive density (the material is inverted: the run is "
+                         "unstable, lower the CFL number, or the deformation is too "
+                         "large for a small-strain model)";
+                return "the particle moved more than half a cell in one step (the run "
+                       "is unstable or the time step too large: lower the CFL number)";
+              });
+}
+
+template <int dim>
+void RunGuard<dim>::stop_if_any(const std::size_t p, const unsigned int step,
+                                const double t,
+                                const std::function<std::string(std::size_t)> &why) const
+{
+  const auto stop = [&]()
+  {
+    AssertThrow(false, ExcRunAborted(step, t, particles.id[p],
+                                     point_to_string(particles.position[p]), why(p)));
+  };
+  if (!ranks.distributed())
+  {
+    if (p < particles.size())
+      stop();
+    return;
+  }
+  constexpr unsigned long long none = ~0ull;
+  const unsigned long long mine     = p < particles.size() ? particles.id[p] : none;
+  const unsigned long long lowest   = ranks.min(mine);
+  if (lowest == none)
+    return;
+  // The rank holding the particle words the diagnostic; every rank stops with it.
+  std::string message;
+  if (mine == lowest)
+    try
+    {
+      stop();
+    }
+    catch (const ExcRunAborted &e)
+    {
+      message = input::concise_message(e);
+    }
+  const auto holder = static_cast<unsigned int>(
+      ranks.min(mine == lowest ? ranks.rank() : ranks.n_ranks()));
+  AssertThrow(false, ExcRunStopped(ranks.broadcast(message, holder)));
+}
+
+template class RunGuard<2>;
+template class RunGuard<3>;
+} // namespace lme_mpm

@@ -1,0 +1,383 @@
+#include <lme_mpm/base/format.h>
+#include <lme_mpm/simulation/run_output.h>
+
+#include <filesystem>
+#include <iomanip>
+#include <numeric>
+#include <sstream>
+
+namespace lme_mpm
+{
+template <int dim>
+RunOutput<dim>::RunOutput(const SimulationParts<dim> &parts, const StageTimer &stages,
+                          std::ostream &console)
+    : parts(parts), stages(stages), pcout(console, false)
+{
+  add_columns();
+}
+
+template <int dim>
+void RunOutput<dim>::add_columns()
+{
+  const auto &p = parts;
+  columns.push_back({[](std::ostream &out)
+                     {
+                       out << ",";
+                       EnergyBalance<dim>::write_header(out);
+                     },
+                     [this](std::ostream &out, const ParticleStore<dim> &all, double)
+                     {
+                       const Energies e = energy.measure(all, parts.materials);
+                       energy.record(e, row_step == 0);
+                       out << ",";
+                       EnergyBalance<dim>::write_row(out, e);
+                       results["final_total_energy"]   = e.total();
+                       results["final_kinetic_energy"] = e.kinetic;
+                       results["final_strain_energy"]  = e.strain;
+                     },
+                     {}});
+  columns.push_back({[&p](std::ostream &out) { p.constraints.write_header(out); },
+                     [&p](std::ostream &out, const ParticleStore<dim> &, double)
+                     { p.constraints.write_row(out); },
+                     [this](std::map<std::string, double> &r, const ParticleStore<dim> &,
+                            double) { peak_force.add_results(r); }});
+  columns.push_back(
+      {[&p](std::ostream &out) { p.bodies.write_header(out, p.contact.active()); },
+       [this](std::ostream &out, const ParticleStore<dim> &all, double)
+       {
+         // The contact forces' mean over the interval this row closes.
+         const bool contact = parts.contact.active();
+         contact_means.close_row(parts.contact.step_forces(), contact);
+         parts.bodies.write_row(out, all, contact ? &contact_means.mean() : nullptr);
+       },
+       [this](std::map<std::string, double> &r, const ParticleStore<dim> &, double)
+       {
+         if (parts.contact.active())
+           for (unsigned int b = 0; b < parts.bodies.size(); ++b)
+             if (!parts.bodies.name(b).empty())
+               r["peak_contact_force_" + parts.bodies.name(b)] = contact_means.peak()[b];
+         parts.contact.add_results(r);
+       }});
+  columns.push_back({[this](std::ostream &out) { probes.write_header(out); },
+                     [this](std::ostream &out, const ParticleStore<dim> &all, double)
+                     { probes.write_row(out, all); },
+                     {}});
+  columns.push_back(
+      {[&p](std::ostream &out) { p.scene->write_history_header(out); },
+       [this](std::ostream &out, const ParticleStore<dim> &all, const double t)
+       { parts.scene->write_history_row(out, scene_state(t, all)); },
+       [this](std::map<std::string, double> &r, const ParticleStore<dim> &all,
+              const double t) { parts.scene->add_results(scene_state(t, all), r); }});
+  columns.push_back({[this](std::ostream &out) { exact.write_header(out); },
+                     [this](std::ostream &out, const ParticleStore<dim> &all,
+                            const double t) { exact.write_row(out, all, t); },
+                     [this](std::map<std::string, double> &r, const ParticleStore<dim> &,
+                            double) { exact.add_results(r); }});
+}
+
+template <int dim>
+void RunOutput<dim>::declare_parameters(ParameterHandler &prm,
+                                        const unsigned int n_probes)
+{
+  Probes<dim>::declare_parameters(prm, n_probes);
+  ExactSolution<dim>::declare_parameters(prm);
+}
+
+template <int dim>
+void RunOutput<dim>::parse_parameters(ParameterHandler &prm, const unsigned int n_probes)
+{
+  pcout.set_condition(parts.parameters.verbosity > 0 && parts.ranks.rank() == 0);
+  if (parts.bodies.any_prescribed())
+    energy.set_excluded_bodies(parts.bodies.prescribed_flags());
+  peak_force.parse(parts.parameters.peak_force_set, parts.constraints);
+  contact_means.reset(parts.bodies.size());
+  probes.parse_parameters(prm, n_probes);
+  exact.parse_parameters(prm);
+  open(parts.parameters.directory);
+}
+
+template <int dim>
+void RunOutput<dim>::open(const std::string &directory)
+{
+  output_directory = directory;
+  particle_output  = std::make_unique<ParticleOutput<dim>>(directory);
+  grid_output      = std::make_unique<GridOutput<dim>>(directory);
+}
+
+template <int dim>
+const ParticleStore<dim> &RunOutput<dim>::observed() const
+{
+  if (!parts.ranks.distributed())
+    return parts.particles;
+  parts.ranks.gather(parts.particles, gathered);
+  return gathered;
+}
+
+template <int dim>
+SceneState<dim> RunOutput<dim>::scene_state(const double t,
+                                            const ParticleStore<dim> &particles) const
+{
+  SceneState<dim> state;
+  state.particles   = &particles;
+  state.body_names  = &parts.bodies.names();
+  state.run         = &parts.parameters;
+  state.constraints = &parts.constraints;
+  if (parts.contact.active())
+  {
+    state.contact_forces      = &contact_means.mean();
+    state.peak_contact_forces = &contact_means.peak();
+  }
+  state.time = t;
+  return state;
+}
+
+template <int dim>
+void RunOutput<dim>::prepare(const bool resumed, const double dt,
+                             const unsigned int n_steps)
+{
+  const RunParameters<dim> &run = parts.parameters;
+  exact.compute_norms(observed(), run.end_time, run.output_interval);
+  // Only now, with every input checked, does the run write anything (rank 0 makes
+  // the directory the others write their pieces to).
+  if (writes_files())
+    std::filesystem::create_directories(output_directory);
+  parts.ranks.barrier();
+  if (!writes_files())
+    return;
+  if (resumed)
+    history.resume(output_directory, resumed_history_size);
+  else
+  {
+    std::ostringstream header;
+    header << "step,time";
+    for (const auto &c : columns)
+      c.header(header);
+    history.create(output_directory, header.str());
+  }
+  pcout << "lme-mpm: " << dim << "D, " << n_particles << " particles, "
+        << parts.grid.n_nodes() << " nodes, shape functions '"
+        << parts.shape_function->name() << "', dt = " << dt << " s, " << n_steps
+        << " steps, " << parts.transfer.threads() << " thread(s)" << std::endl;
+}
+
+template <int dim>
+void RunOutput<dim>::after_step(const double external_work, const double dt)
+{
+  energy.add_external_work(external_work);
+  peak_force.update(parts.constraints);
+  // Every step counts towards the row's mean contact force, with contact or not.
+  contact_means.book(parts.contact.step_forces(), dt);
+}
+
+template <int dim>
+void RunOutput<dim>::write_first_row(const double t)
+{
+  write_row(0, t);
+  next_time = parts.parameters.output_interval;
+}
+
+template <int dim>
+void RunOutput<dim>::write_due_row(const unsigned int step, const double t,
+                                   const double dt)
+{
+  write_row(step, t);
+  // The first output time past this step (an interval below the rounding of t
+  // would never move it by addition).
+  const double interval = parts.parameters.output_interval;
+  next_time             = interval * (std::floor((t + 0.5 * dt) / interval) + 1);
+}
+
+template <int dim>
+void RunOutput<dim>::write_row(const unsigned int step, const double t)
+{
+  // A distributed run reads every particle on rank 0, which writes the files.
+  const ParticleStore<dim> &all = observed();
+  const RunParameters<dim> &run = parts.parameters;
+  const bool distributed        = parts.ranks.distributed();
+  if (run.write_grid && distributed)
+    write_grid_file(t);
+  // Each rank writes its own particles.
+  if (run.write_particles && distributed)
+    particle_output->write_piece(parts.particles, t, parts.ranks.rank(),
+                                 parts.ranks.n_ranks());
+  if (!writes_files())
+    return;
+  row_step = step;
+  std::ostringstream row;
+  row << std::setprecision(10) << step << "," << t;
+  for (const auto &c : columns)
+    c.row(row, all, t);
+  history.write_row(row.str());
+  if (run.write_particles && !distributed)
+    particle_output->write(parts.particles, t);
+  if (run.write_grid && !distributed)
+    grid_output->write(parts.grid, parts.transfer.nodes().mass,
+                       parts.transfer.nodes().rate, t);
+}
+
+template <int dim>
+void RunOutput<dim>::write_grid_file(const double t)
+{
+  // Each node from the rank that owns it (elsewhere its sums miss particles): masses
+  // and rates in one message.
+  const unsigned int n          = parts.grid.n_nodes();
+  const NodalFields<dim> &nodes = parts.transfer.nodes();
+  std::vector<double> values(n * (1 + dim), 0.0);
+  for (unsigned int I = 0; I < n && I < nodes.mass.size(); ++I)
+    if (parts.ranks.owns_node(I))
+    {
+      values[I] = nodes.mass[I];
+      for (unsigned int d = 0; d < dim; ++d)
+        values[n + I * dim + d] = nodes.rate[I][d];
+    }
+  parts.ranks.sum(values);
+  if (!writes_files())
+    return;
+  std::vector<double> mass(values.begin(), values.begin() + n);
+  std::vector<Tensor<1, dim>> rate(n);
+  for (unsigned int I = 0; I < n; ++I)
+    for (unsigned int d = 0; d < dim; ++d)
+      rate[I][d] = values[n + I * dim + d];
+  grid_output->write(parts.grid, mass, rate, t);
+}
+
+template <int dim>
+std::string RunOutput<dim>::scene_finished(const double t)
+{
+  const std::string reason = parts.ranks.broadcast(
+      writes_files() ? parts.scene->finished(scene_state(t, last_observed())) : "");
+  if (!reason.empty())
+  {
+    results["stopped_early"] = 1;
+    scene_stop               = reason;
+    pcout << "Stopped at t = " << t << ": " << reason << std::endl;
+  }
+  return reason;
+}
+
+template <int dim>
+std::map<std::string, double> RunOutput<dim>::energies() const
+{
+  return energy.measure(observed(), parts.materials).as_map();
+}
+
+template <int dim>
+RunSummary RunOutput<dim>::summarise(const double wall, const unsigned int steps,
+                                     const double dt, const double t)
+{
+  // Every rank takes part in the gathering; rank 0 summarises.
+  const ParticleStore<dim> &all = observed();
+  RunSummary summary;
+  if (!writes_files())
+    return summary;
+  results["wall_seconds"]              = wall;
+  results["steps"]                     = steps;
+  results["particles"]                 = n_particles;
+  results["ranks"]                     = parts.ranks.n_ranks();
+  results["nodes"]                     = parts.grid.n_nodes();
+  results["threads"]                   = parts.transfer.threads();
+  results["time_step"]                 = dt;
+  results["particle_steps_per_second"] = n_particles * double(steps) / wall;
+  results["max_energy_drift"]          = energy.max_drift();
+  stages.add_results(results);
+  for (const auto &c : columns)
+    if (c.results)
+      c.results(results, all, t);
+  for (const auto &s : parts.shape_function->statistics())
+    results["shape_function_" + s.first] = s.second;
+  // What the ranks hold now, against what the run started with (migration must
+  // neither lose nor copy a particle).
+  results["final_particles"] = all.size();
+  results["final_mass"]      = std::accumulate(all.mass.begin(), all.mass.end(), 0.0);
+  results["initial_mass"]    = initial_mass;
+  parts.fracture.add_statistics(all, results);
+  if (parts.fracture.active())
+  {
+    results["dissipated_energy"] =
+        energy.measure(all, parts.materials).as_map()["dissipated_energy"];
+    write_failed_particles(output_directory + "/failed_particles.csv", all);
+    write_damage_field(output_directory + "/damage.csv", all);
+  }
+  if (!parts.cracks.empty())
+  {
+    write_polylines(output_directory + "/cracks.csv", parts.cracks.polylines());
+    results["crack_second_fields"] = parts.cracks.n_crack_nodes();
+  }
+  summary.values = results;
+  return summary;
+}
+
+template <int dim>
+void RunOutput<dim>::report_progress(const std::chrono::steady_clock::time_point start,
+                                     const unsigned int step, const unsigned int n_steps,
+                                     const double t)
+{
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  pcout << "  step " << std::setw(8) << step << "  t = " << std::setw(12)
+        << std::setprecision(5) << t << "  " << std::setw(3) << 100 * step / n_steps
+        << "%  " << std::setprecision(3) << n_particles * step / elapsed
+        << " particle-steps/s  ETA " << std::setprecision(3)
+        << elapsed * (n_steps - step) / step << " s" << std::endl;
+}
+
+template <int dim>
+void RunOutput<dim>::report_balance(const double wall, const double exchange_seconds)
+{
+  const Decomposition<dim> &ranks = parts.ranks;
+  if (!ranks.distributed())
+    return;
+  // What each rank holds at the end, and how long its exchanges took (waiting for
+  // the slowest rank included): tells an uneven split from a costly halo.
+  const std::size_t owned = Decomposition<dim>::n_owned(parts.particles);
+  const auto owned_all    = ranks.all_gather(static_cast<double>(owned));
+  const auto ghosts_all =
+      ranks.all_gather(static_cast<double>(parts.particles.size() - owned));
+  const auto exchange_all = ranks.all_gather(exchange_seconds);
+  for (unsigned int r = 0; r < ranks.n_ranks(); ++r)
+    pcout << "rank " << r << ": " << owned_all[r] << " particles, " << ghosts_all[r]
+          << " ghosts; exchange " << exchange_all[r] << " s of " << wall << " s"
+          << std::endl;
+}
+
+template <int dim>
+void RunOutput<dim>::report_end(const double wall, const unsigned int steps,
+                                const double exchange_seconds)
+{
+  if (pcout.is_active())
+    stages.print(pcout.get_stream(), wall);
+  report_balance(wall, exchange_seconds);
+  const auto rate = results.find("particle_steps_per_second");
+  pcout << "Finished: " << steps << " steps in " << wall << " s ("
+        << (rate == results.end() ? 0.0 : rate->second)
+        << " particle-steps/s); max energy drift " << energy.max_drift() << std::endl;
+}
+
+template <int dim>
+void RunOutput<dim>::serialize(Archive &ar)
+{
+  energy.serialize(ar);
+  ar(next_time);
+  peak_force.serialize(ar);
+  contact_means.serialize(ar);
+  AssertThrow(contact_means.peak().size() == parts.bodies.size(),
+              ExcMessage("the checkpoint holds another number of bodies"));
+  exact.serialize(ar);
+  // Only rank 0 writes history.csv.
+  std::uint64_t history_size = ar.loading() || !writes_files() ? 0 : history.size();
+  ar(history_size);
+  if (ar.loading())
+    resumed_history_size = history_size;
+  auto particle_series = particle_output->series();
+  auto grid_series     = grid_output->series();
+  ar(particle_series, grid_series);
+  if (ar.loading())
+  {
+    particle_output->restore(particle_series);
+    grid_output->restore(grid_series);
+  }
+}
+
+template class RunOutput<2>;
+template class RunOutput<3>;
+} // namespace lme_mpm

@@ -1,0 +1,343 @@
+#include <deal.II/base/timer.h>
+
+#include <lme_mpm/base/format.h>
+#include <lme_mpm/base/input.h>
+#include <lme_mpm/base/plugin_libraries.h>
+#include <lme_mpm/geometry/particle_generator.h>
+#include <lme_mpm/shape_functions/crack_band.h>
+#include <lme_mpm/simulation/halo_reach.h>
+#include <lme_mpm/simulation/simulation.h>
+
+#include <numeric>
+#include <sstream>
+
+namespace lme_mpm
+{
+template <int dim>
+void Simulation<dim>::declare_parameters(ParameterHandler &prm,
+                                         const ParameterCounts &counts)
+{
+  ParameterCounts::declare_parameters(prm);
+  PluginLibraries::declare_parameters(prm);
+  RunParameters<dim>::declare_parameters(prm);
+  declare_scene_parameters<dim>(prm);
+  BackgroundGrid<dim>::declare_parameters(prm);
+  CrackSet<dim>::declare_parameters(prm);
+  MaterialSet<dim>::declare_parameters(prm, counts.materials);
+  FractureCoupling<dim>::declare_parameters(prm, counts.materials);
+  ParticleGenerator<dim>::declare_parameters(prm, counts.bodies);
+  Bodies<dim>::declare_parameters(prm, counts.bodies);
+  NodeConstraints<dim>::declare_parameters(prm, counts.constraints);
+  BodyContact<dim>::declare_parameters(prm);
+  RunOutput<dim>::declare_parameters(prm, counts.probes);
+}
+
+template <int dim>
+Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts,
+                            std::ostream &console)
+    : guard(parts.particles, parts.ranks), stepper(parts, guard),
+      output(parts, stepper.stages(), console)
+{
+  parts.parameters.parse_parameters(prm);
+  setup_scene(prm, counts);
+  parts.grid.parse_parameters(prm);
+  parts.cracks.parse_parameters(prm, counts.bodies);
+  parts.materials.parse_parameters(prm, counts.materials, parts.parameters.plane_stress);
+  parts.fracture.parse_parameters(prm, parts.materials, parts.grid,
+                                  parts.parameters.thickness);
+  const TimeStepping ts = stable_time_step(parts.parameters, parts.grid.min_spacing(),
+                                           parts.materials.max_wave_speed());
+  dt                    = ts.dt;
+  n_steps               = ts.n_steps;
+  setup_particles(prm, counts);
+  setup_shape_functions(prm);
+  setup_bodies_and_contact(prm, counts);
+  if (parts.parameters.output_interval <= 0)
+    parts.parameters.output_interval = parts.parameters.end_time / 20;
+  output.parse_parameters(prm, counts.probes);
+  double min_mass = std::numeric_limits<double>::max();
+  for (const double m : parts.particles.mass)
+    min_mass = std::min(min_mass, m);
+  stepper.set_up(dt, 1e-12 * min_mass, crack_reach, particle_spacing);
+  distribute();
+}
+
+template <int dim>
+void Simulation<dim>::setup_scene(ParameterHandler &prm, const ParameterCounts &counts)
+{
+  // Every entry as declared: a scene writes an entry only where the file left it
+  // at this default.
+  ParameterHandler declarations;
+  declare_parameters(declarations, counts);
+  SceneContext<dim> context;
+  context.thickness     = parts.parameters.thickness;
+  context.n_bodies      = counts.bodies;
+  context.n_constraints = counts.constraints;
+  context.contact       = prm.get(std::vector<std::string>{"Contact"}, "Type") != "none";
+  context.declarations  = &declarations;
+  parts.scene           = create_scene<dim>(prm, context);
+  EntryWriter writer(prm, declarations, counts.bodies, counts.constraints);
+  parts.scene->write_entries(writer);
+  parts.scene->adjust(parts.parameters);
+}
+
+template <int dim>
+void Simulation<dim>::setup_particles(ParameterHandler &prm,
+                                      const ParameterCounts &counts)
+{
+  std::vector<double> densities;
+  for (unsigned int m = 0; m < parts.materials.size(); ++m)
+    densities.push_back(parts.materials[m].density());
+  const auto bodies =
+      ParticleGenerator<dim>::fill(prm, counts.bodies, parts.grid, densities,
+                                   parts.parameters.thickness, parts.particles);
+  const double h_min = parts.grid.min_spacing();
+  body_placements.clear();
+  std::vector<std::string> sections;
+  for (const auto &body : bodies)
+  {
+    body_placements.emplace_back(body.offsets, body.weights);
+    sections.push_back(body.section);
+    particle_spacing = std::min(particle_spacing, h_min / body.particles_per_cell);
+    // Only the cells the body starts in bound its neighbourhoods.
+    parts.fracture.check_neighbourhood(body.material, body.particles_per_cell,
+                                       body.section, &body.cells);
+    for (const unsigned int m : body.zone_materials)
+      parts.fracture.check_neighbourhood(m, body.particles_per_cell, body.section,
+                                         &body.cells);
+  }
+  check_initial_motion(sections);
+}
+
+template <int dim>
+void Simulation<dim>::check_initial_motion(const std::vector<std::string> &sections) const
+{
+  // The time step comes from the wave speed; the motion the input starts must not
+  // carry a particle half a cell in one step either (the run guard would stop it at
+  // step 1 and blame the CFL number).
+  const ParticleStore<dim> &store = parts.particles;
+  const double h_min              = parts.grid.min_spacing();
+  std::size_t fastest             = 0;
+  for (std::size_t p = 0; p < store.size(); ++p)
+    if (store.velocity[p].norm() > store.velocity[fastest].norm())
+      fastest = p;
+  if (store.size() > 0)
+  {
+    const double v = store.velocity[fastest].norm();
+    std::ostringstream msg;
+    msg << "the initial speed " << v << " m/s at "
+        << point_to_string(store.position[fastest]) << " carries a particle " << v * dt
+        << " m in one step of dt = " << dt << " s, more than half the smallest cell ("
+        << 0.5 * h_min << " m): lower the speed or Time/CFL";
+    AssertThrow(
+        v * dt <= 0.5 * h_min,
+        ExcBadInput(sections[store.body_id[fastest]] + "/Initial velocity", msg.str()));
+  }
+  const double g = parts.parameters.body_force.norm();
+  std::ostringstream msg;
+  msg << "|b| = " << g << " m/s^2 moves a particle " << 0.5 * g * dt * dt
+      << " m in one step of dt = " << dt << " s, more than half the smallest cell ("
+      << 0.5 * h_min << " m)";
+  AssertThrow(0.5 * g * dt * dt <= 0.5 * h_min,
+              ExcBadInput("Problem/Body force", msg.str()));
+}
+
+template <int dim>
+void Simulation<dim>::setup_shape_functions(ParameterHandler &prm)
+{
+  ShapeFunctionContext<dim> context;
+  context.grid      = &parts.grid;
+  context.thickness = parts.parameters.thickness;
+  prm.enter_subsection("Shape functions");
+  parts.shape_function = ShapeFunctionRegistry<dim>::instance().create(
+      parts.parameters.shape_function, prm, context);
+  prm.leave_subsection();
+  if (parts.fracture.active())
+  {
+    // A band width tied to the grid spans the band these functions spread a crack
+    // over, which depends on where the body's particles sit in their cells.
+    std::vector<double> width, reach;
+    for (const auto &band : crack_bands(*parts.shape_function, parts.grid,
+                                        body_placements, parts.parameters.thickness))
+      width.push_back(band.width_cells), reach.push_back(band.reach_cells);
+    parts.fracture.set_crack_band(width, reach);
+  }
+  parts.transfer.nodes().layout.reinit(parts.grid.n_nodes());
+  if (!parts.cracks.empty())
+  {
+    crack_reach = parts.shape_function->support_radius(parts.grid);
+    parts.cracks.assign_fields(parts.grid, crack_reach, parts.transfer.nodes().layout);
+  }
+}
+
+template <int dim>
+void Simulation<dim>::setup_bodies_and_contact(ParameterHandler &prm,
+                                               const ParameterCounts &counts)
+{
+  parts.constraints.parse_parameters(prm, counts.constraints, parts.grid);
+  std::vector<std::string> set_names;
+  for (unsigned int c = 0; c < parts.constraints.size(); ++c)
+    set_names.push_back(parts.constraints[c].name());
+  parts.bodies.parse_parameters(prm, counts.bodies, set_names);
+  parts.contact.parse_parameters(prm, parts.parameters.thickness,
+                                 parts.shape_function->support_radius(parts.grid));
+  if (parts.bodies.any_prescribed())
+  {
+    parts.transfer.set_prescribed_bodies(parts.bodies.prescribed_flags());
+    parts.bodies.set_prescribed_velocities(parts.particles, 0);
+  }
+  // A crack's second fields belong to the cracked body; its faces' contact pairs
+  // them with that body's field at the node, which contact may have moved off the
+  // node's own index.
+  if (parts.contact.active() && !parts.cracks.empty())
+    parts.crack_contact.set_body_fields(parts.contact.body_fields());
+  parts.scene->check(output.scene_state(t, parts.particles));
+}
+
+template <int dim>
+void Simulation<dim>::distribute()
+{
+  n_particles = parts.particles.size();
+  output.set_totals(n_particles, std::accumulate(parts.particles.mass.begin(),
+                                                 parts.particles.mass.end(), 0.0));
+  // The parts that sum or agree over the ranks (no-ops on one rank).
+  parts.transfer.set_ranks(parts.ranks);
+  parts.fracture.set_ranks(parts.ranks);
+  parts.constraints.set_ranks(parts.ranks);
+  parts.contact.set_ranks(parts.ranks);
+  if (!parts.ranks.distributed())
+    return;
+  // The halo holds what one step of an owned particle reads (halo_reach.h).
+  const HaloReach reach = halo_reach(parts.grid, *parts.shape_function, parts.fracture,
+                                     parts.contact, parts.parameters.mass_corrections);
+  parts.ranks.partition(parts.grid, reach);
+  parts.ranks.distribute(parts.particles);
+  output.console() << "lme-mpm: " << parts.ranks.n_ranks() << " MPI ranks; "
+                   << reach.support_passes << " support passes in the halo; rank 0 owns "
+                   << parts.ranks.n_owned_cells() << " cells and keeps "
+                   << parts.ranks.n_halo_cells() << " halo cells, "
+                   << Decomposition<dim>::n_owned(parts.particles) << " particles and "
+                   << parts.particles.size() -
+                          Decomposition<dim>::n_owned(parts.particles)
+                   << " ghosts" << std::endl;
+}
+
+template <int dim>
+void Simulation<dim>::step()
+{
+  const StepResult result = stepper.advance(t, step_count);
+  t += dt;
+  ++step_count;
+  output.after_step(result.external_work, dt);
+  guard.stop_if_unstable(result.first_bad, step_count, t);
+  stepper.exchange_particles();
+}
+
+template <int dim>
+void Simulation<dim>::advance_to_end(TimerOutput &timer,
+                                     const std::chrono::steady_clock::time_point start)
+{
+  if (!resumed)
+  {
+    TimerOutput::Scope scope(timer, "output");
+    output.write_first_row(t);
+  }
+  auto last_checkpoint            = std::chrono::steady_clock::now();
+  const unsigned int report_every = std::max(1u, n_steps / 10);
+  while (step_count < n_steps)
+  {
+    {
+      TimerOutput::Scope scope(timer, "time step");
+      step();
+    }
+    if (output.due(t, dt) || step_count == n_steps)
+    {
+      TimerOutput::Scope scope(timer, "output");
+      output.write_due_row(step_count, t, dt);
+      if (!output.scene_finished(t).empty())
+        break;
+    }
+    if (checkpoint_due(last_checkpoint) && step_count < n_steps)
+    {
+      TimerOutput::Scope scope(timer, "checkpoint");
+      write_checkpoint();
+      last_checkpoint = std::chrono::steady_clock::now();
+    }
+    if (step_count % report_every == 0 || step_count == n_steps)
+      output.report_progress(start, step_count, n_steps, t);
+    const unsigned int max_steps = parts.parameters.max_steps;
+    if (max_steps > 0 && step_count >= max_steps && step_count < n_steps)
+      AssertThrow(false, ExcStepLimit(step_count, t));
+  }
+}
+
+template <int dim>
+std::string Simulation<dim>::end_failed_run(const std::exception &e)
+{
+  // Called while the exception is handled: an error on one rank only (the others
+  // wait in a collective call) goes on to the program, which stops every rank
+  // (main.cc); writing output here would hang.
+  const bool on_all_ranks = dynamic_cast<const ExcRunAborted *>(&e) != nullptr ||
+                            dynamic_cast<const ExcRunStopped *>(&e) != nullptr ||
+                            dynamic_cast<const ExcStepLimit *>(&e) != nullptr;
+  if (parts.ranks.distributed() && !on_all_ranks)
+    throw;
+  std::string message = input::concise_message(e);
+  if (!on_all_ranks)
+  {
+    std::ostringstream where;
+    where << "Run stopped at step " << step_count + 1 << ", time " << t << ": "
+          << message;
+    message = where.str();
+  }
+  // Keep what the run produced: one last row and particle file at the failure.
+  try
+  {
+    output.write_row(step_count, t);
+  }
+  catch (...)
+  {
+  }
+  return message;
+}
+
+template <int dim>
+std::map<std::string, double> Simulation<dim>::run()
+{
+  TimerOutput timer(output.console(), TimerOutput::never, TimerOutput::wall_times);
+  const auto start = std::chrono::steady_clock::now();
+  output.prepare(resumed, dt, n_steps);
+  std::string status = "completed", message;
+  try
+  {
+    advance_to_end(timer, start);
+  }
+  catch (const std::exception &e)
+  {
+    // Any failure inside the loop (an unstable step, a shape-function solve that does
+    // not converge) ends the run with what it produced kept on disk.
+    status  = "aborted";
+    message = end_failed_run(e);
+  }
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  RunSummary summary           = output.summarise(wall, step_count, dt, t);
+  summary.status               = status;
+  summary.message              = message.empty() ? output.stop_reason() : message;
+  const std::uint64_t checksum = state_checksum();
+  if (output.writes_files())
+    summary.write(output.directory() + "/summary.json", parts.shape_function->name(),
+                  checksum, dim);
+  // Past this point the output is on disk (on every rank); the caller reports the
+  // failure.
+  parts.ranks.barrier();
+  // Every rank ends alike; main() tells this from an error on one rank only.
+  AssertThrow(status == "completed", ExcRunFailed(message));
+  timer.print_summary();
+  output.report_end(wall, step_count, stepper.exchange_seconds());
+  return summary.values;
+}
+
+template class Simulation<2>;
+template class Simulation<3>;
+} // namespace lme_mpm
