@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A longer fuzz run of the input than CI's: random single-entry edits of the shipped
-# scenes (tests/test_fuzz.cc), each of which must run cleanly or stop with a message
+# scenes (tests/input/test_fuzz.cc), each of which must run cleanly or stop with a message
 # naming an entry. Prints the outcome counts and every run-time guard it met.
 #
 #   scripts/fuzz.sh [build-dir] [cases] [first-seed] [seeds]

@@ -148,6 +148,12 @@ void require_range(const double value, const double lo, const double hi, const b
   AssertThrow(ok, ExcBadInput(entry, msg.str()));
 }
 
+void require_positive(const std::vector<std::pair<double, std::string>> &values)
+{
+  for (const auto &[value, entry] : values)
+    require_range(value, 0, 1e300, true, entry);
+}
+
 template dealii::Point<2> parse_point<2>(const std::string &, const std::string &);
 template dealii::Point<3> parse_point<3>(const std::string &, const std::string &);
 template <int dim>

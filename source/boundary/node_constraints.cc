@@ -2,6 +2,7 @@
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/base/parameters.h>
 #include <lme_mpm/boundary/node_constraints.h>
+#include <lme_mpm/geometry/geometry.h>
 
 #include <algorithm>
 #include <cctype>
@@ -15,7 +16,7 @@ namespace
 /// The entries of one "Constraint N", listed once for declaring and reading.
 struct ConstraintEntries
 {
-  std::string name, boundary_ids, box, components;
+  std::string name, boundary_ids, box, shape, components;
 
   void entries(EntryList &list)
   {
@@ -28,6 +29,9 @@ struct ConstraintEntries
     list.add("Box", box, "", Patterns::Anything(),
              "Optional box 'x0, y0[, z0], x1, y1[, z1]': grid nodes inside it "
              "join the set.");
+    list.add("Shape", shape, "", Patterns::Anything(),
+             "Optional region in the form of Body N/Shape (for example a slot at an "
+             "angle): grid nodes inside it join the set.");
     list.add("Components", components, "x", Patterns::MultipleSelection("x|y|z"),
              "Velocity components that are prescribed.");
   }
@@ -80,13 +84,21 @@ void NodeConstraint<dim>::parse_parameters(ParameterHandler &prm,
     const auto nodes = grid.nodes_in_box(BoundingBox<dim>({lo, hi}));
     node_list.insert(node_list.end(), nodes.begin(), nodes.end());
   }
+  if (!in.shape.empty())
+  {
+    const auto region =
+        GeometryRegistry<dim>::instance().create(in.shape, prefix + "/Shape");
+    for (unsigned int n = 0; n < grid.n_nodes(); ++n)
+      if (region->inside(grid.node_point(n)))
+        node_list.push_back(n);
+  }
   std::sort(node_list.begin(), node_list.end());
   node_list.erase(std::unique(node_list.begin(), node_list.end()), node_list.end());
   AssertThrow(
       !node_list.empty(),
       ExcBadInput(prefix, "the node set '" + set_name +
-                              "' is empty: give boundary ids or a box holding grid "
-                              "nodes"));
+                              "' is empty: give boundary ids, a box or a shape holding "
+                              "grid nodes"));
 
   const std::string &comps = in.components;
   for (unsigned int d = 0; d < dim; ++d)

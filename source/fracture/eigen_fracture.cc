@@ -19,6 +19,41 @@ namespace fracture
  * count with zero stress, all with their mass) exceeds f_t; the particle then damages
  * with its max principal strain beyond the onset value, spread over the band width.
  */
+/// The entries of eigensoftening besides the shared ones, declared and read from this
+/// one list.
+struct EigensofteningEntries
+{
+  double tensile_strength = 3e6, critical_opening = 0, band_width = 0;
+  std::string law, damage_rule;
+
+  void entries(EntryList &list)
+  {
+    list.add("Tensile strength", tensile_strength, "3e6", Patterns::Double(0),
+             "f_t (Pa), > 0: eigensoftening starts when the neighbourhood's "
+             "mass-weighted max principal stress exceeds it.");
+    list.add("Softening law", law, "linear",
+             Patterns::Selection(SofteningLawRegistry::instance().pattern()),
+             "Cohesive law of eigensoftening. " +
+                 SofteningLawRegistry::instance().documentation());
+    list.add("Critical opening", critical_opening, "0", Patterns::Double(0),
+             "w_c (m) where the law reaches zero traction; 0: the law's own value "
+             "(linear 2 G_F/f_t, bilinear 3.6 G_F/f_t).");
+    list.add("Band width", band_width, "0", Patterns::Double(0),
+             "h_eps (m), the width the crack opening is spread over; 0 ties it to the "
+             "band a crack localises in on the grid (crack-band regularisation): the "
+             "local grid spacing h (the shortest side of the particle's cell at t = 0) "
+             "times the shape functions' band in cells, 1 for linear functions and "
+             "wider for smoother ones, measured from the functions at the start "
+             "(doc/theory.md).");
+    list.add("Damage rule", damage_rule, "crack band",
+             Patterns::Selection("crack band|paper"),
+             "'crack band': the damage makes the particle's max principal stress follow "
+             "the cohesive law, so the band dissipates G_F per unit area; 'paper': chi "
+             "= 1 - g((eps_I - eps_onset) h_eps), the draft's eq. 22 (dissipates more "
+             "than G_F: doc/theory.md).");
+  }
+};
+
 template <int dim>
 class Eigensoftening : public FractureModel<dim>
 {
@@ -26,50 +61,27 @@ public:
   static void declare_parameters(ParameterHandler &prm)
   {
     declare_shared_fracture_parameters(prm);
-    prm.declare_entry("Tensile strength", "3e6", Patterns::Double(0),
-                      "f_t (Pa), > 0: eigensoftening starts when the neighbourhood's "
-                      "mass-weighted max principal stress exceeds it.");
-    prm.declare_entry("Softening law", "linear",
-                      Patterns::Selection(SofteningLawRegistry::instance().pattern()),
-                      "Cohesive law of eigensoftening. " +
-                          SofteningLawRegistry::instance().documentation());
-    prm.declare_entry("Critical opening", "0", Patterns::Double(0),
-                      "w_c (m) where the law reaches zero traction; 0: the law's own "
-                      "value (linear 2 G_F/f_t, bilinear 3.6 G_F/f_t).");
-    prm.declare_entry("Band width", "0", Patterns::Double(0),
-                      "h_eps (m), the width the crack opening is spread over; 0 ties it "
-                      "to the band a crack localises in on the grid (crack-band "
-                      "regularisation): the local grid spacing h (the shortest side of "
-                      "the particle's cell at t = 0) times the shape functions' band in "
-                      "cells, 1 for linear functions and wider for smoother ones, "
-                      "measured from the functions at the start (doc/theory.md).");
-    prm.declare_entry("Damage rule", "crack band",
-                      Patterns::Selection("crack band|paper"),
-                      "'crack band': the damage makes the particle's max principal "
-                      "stress follow the cohesive law, so the band dissipates G_F per "
-                      "unit area; 'paper': chi = 1 - g((eps_I - eps_onset) h_eps), the "
-                      "draft's eq. 22 (dissipates more than G_F: doc/theory.md).");
+    EntryList::declare<EigensofteningEntries>(prm);
   }
 
   Eigensoftening(ParameterHandler &prm, const FractureContext &c)
       : grid_spacing(c.grid_spacing)
   {
-    C_eps = prm.get_double("Epsilon factor");
-    input::require_range(C_eps, 0, 1e6, true, c.section + "/Epsilon factor");
+    const auto shared = SharedFractureEntries::parse(prm, c.section);
+    const auto in     = EntryList::parse<EigensofteningEntries>(prm);
+    C_eps             = shared.epsilon_factor;
     SofteningContext sc;
-    sc.tensile_strength = prm.get_double("Tensile strength");
-    sc.fracture_energy  = prm.get_double("Fracture energy");
-    sc.critical_opening = prm.get_double("Critical opening");
+    sc.tensile_strength = in.tensile_strength;
+    sc.fracture_energy  = shared.fracture_energy;
+    sc.critical_opening = in.critical_opening;
     sc.section          = c.section;
     input::require_range(sc.tensile_strength, 0, 1e300, true,
                          c.section + "/Tensile strength");
-    input::require_range(sc.fracture_energy, 0, 1e300, true,
-                         c.section + "/Fracture energy");
-    f_t = sc.tensile_strength;
-    law = SofteningLawRegistry::instance().create(prm.get("Softening law"), prm, sc);
-    w_c = law->critical_opening();
-    band_width = prm.get_double("Band width");
-    paper_rule = prm.get("Damage rule") == "paper";
+    f_t        = sc.tensile_strength;
+    law        = SofteningLawRegistry::instance().create(in.law, prm, sc);
+    w_c        = law->critical_opening();
+    band_width = in.band_width;
+    paper_rule = in.damage_rule == "paper";
     // A band wider than M / (f_t max|g'|) snaps back: the softening branch cannot be
     // followed. Checked with the P-wave modulus here and per particle at onset.
     if (band_width > 0 && !paper_rule && c.p_wave_modulus > 0)
@@ -264,26 +276,35 @@ template <int dim>
 class Eigenerosion : public FractureModel<dim>
 {
 public:
+  /// The entry of eigenerosion besides the shared ones.
+  struct Entries
+  {
+    double factor = 1;
+    void entries(EntryList &list)
+    {
+      list.add("Energy release factor", factor, "1", Patterns::Double(0),
+               "Eigenerosion only: G_p = factor * eps * (volume-weighted mean energy "
+               "density over the neighbourhood), > 0 (the normalising constant C_eps "
+               "of the paper's eq. 13 is factor * eps). 1 makes a uniformly strained "
+               "band one neighbourhood wide release its stored energy; at a sharp "
+               "crack tip the asymptotic field needs about 7.2 (plane strain, nu = "
+               "1/3): doc/validation_mode_i.md.");
+    }
+  };
+
   static void declare_parameters(ParameterHandler &prm)
   {
     declare_shared_fracture_parameters(prm);
-    prm.declare_entry(
-        "Energy release factor", "1", Patterns::Double(0),
-        "Eigenerosion only: G_p = factor * eps * (volume-weighted mean energy density "
-        "over the neighbourhood), > 0 (the normalising constant C_eps of the paper's "
-        "eq. 13 is factor * eps). 1 makes a uniformly strained band one neighbourhood "
-        "wide release its stored energy; at a sharp crack tip the asymptotic field "
-        "needs about 7.2 (plane strain, nu = 1/3): doc/validation_mode_i.md.");
+    EntryList::declare<Entries>(prm);
   }
 
   Eigenerosion(ParameterHandler &prm, const FractureContext &c)
       : grid_spacing(c.grid_spacing)
   {
-    C_eps = prm.get_double("Epsilon factor");
-    input::require_range(C_eps, 0, 1e6, true, c.section + "/Epsilon factor");
-    G_c = prm.get_double("Fracture energy");
-    input::require_range(G_c, 0, 1e300, true, c.section + "/Fracture energy");
-    factor = prm.get_double("Energy release factor");
+    const auto shared = SharedFractureEntries::parse(prm, c.section);
+    C_eps             = shared.epsilon_factor;
+    G_c               = shared.fracture_energy;
+    factor            = EntryList::parse<Entries>(prm).factor;
     input::require_range(factor, 0, 1e6, true, c.section + "/Energy release factor");
   }
 

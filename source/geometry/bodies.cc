@@ -12,9 +12,17 @@ namespace lme_mpm
 {
 namespace
 {
-const char *const name_documentation =
-    "Name of the body in history.csv (force_<name>_x, displacement_<name>_x, ...) and "
-    "summary.json: letters, digits or '_'. Empty: not reported.";
+/// The body's own entry beside ParticleGenerator's.
+struct NameEntry
+{
+  std::string name;
+  void entries(EntryList &list)
+  {
+    list.add("Name", name, "", Patterns::Anything(),
+             "Name of the body in history.csv (force_<name>_x, displacement_<name>_x, "
+             "...) and summary.json: letters, digits or '_'. Empty: not reported.");
+  }
+};
 const char *const velocity_documentation =
     "Velocity (m/s) the body follows, a function of x, y, z and t with one component "
     "per direction separated by ';'. Empty: the body moves freely. A prescribed body "
@@ -27,7 +35,7 @@ void Bodies<dim>::declare_parameters(ParameterHandler &prm, const unsigned int n
   for (unsigned int b = 0; b < n_bodies; ++b)
   {
     prm.enter_subsection(input::subsection_name("Body", b));
-    prm.declare_entry("Name", "", Patterns::Anything(), name_documentation);
+    EntryList::declare<NameEntry>(prm);
     prm.enter_subsection("Prescribed velocity");
     Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
     prm.declare_entry("Function expression", "", Patterns::Anything(),
@@ -53,7 +61,7 @@ void Bodies<dim>::parse_parameters(ParameterHandler &prm, const unsigned int n_b
   {
     const std::string section = input::subsection_name("Body", b);
     prm.enter_subsection(section);
-    names_[b] = input::trim(prm.get("Name"));
+    names_[b] = input::trim(EntryList::parse<NameEntry>(prm).name);
     prm.enter_subsection("Prescribed velocity");
     const std::string expr = input::trim(prm.get("Function expression"));
     prm.leave_subsection();

@@ -171,9 +171,16 @@ public:
   }
   BoundingBox<dim> bounding_box() const override
   {
+    // The rectangle's four corners.
     Point<dim> lo, hi;
-    const double ext = length + width;
-    lo[0] = x0 - ext, hi[0] = x0 + ext, lo[1] = y0 - ext, hi[1] = y0 + ext;
+    lo[0] = lo[1] = 1e300, hi[0] = hi[1] = -1e300;
+    for (const double s : {0.0, length})
+      for (const double n : {-0.5 * width, 0.5 * width})
+      {
+        const double x = x0 + s * tx - n * ty, y = y0 + s * ty + n * tx;
+        lo[0] = std::min(lo[0], x), hi[0] = std::max(hi[0], x);
+        lo[1] = std::min(lo[1], y), hi[1] = std::max(hi[1], y);
+      }
     for (unsigned int d = 2; d < dim; ++d)
       lo[d] = -1e300, hi[d] = 1e300;
     return BoundingBox<dim>({lo, hi});

@@ -1,4 +1,5 @@
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/base/parameters.h>
 #include <lme_mpm/materials/linear_elastic.h>
 
 #include <cmath>
@@ -7,20 +8,34 @@ namespace lme_mpm
 {
 namespace materials
 {
+namespace
+{
+/// The material's entries, declared and read from this one list.
+struct LinearElasticEntries
+{
+  double E = 1e9, nu = 0.2;
+  void entries(EntryList &list)
+  {
+    list.add("Young's modulus", E, "1e9", Patterns::Double(0),
+             "Young's modulus E (Pa), > 0.");
+    list.add("Poisson's ratio", nu, "0.2", Patterns::Double(-1, 0.5),
+             "Poisson's ratio nu, in (-1, 0.5).");
+  }
+};
+} // namespace
+
 template <int dim>
 void LinearElastic<dim>::declare_parameters(ParameterHandler &prm)
 {
-  prm.declare_entry("Young's modulus", "1e9", Patterns::Double(0),
-                    "Young's modulus E (Pa), > 0.");
-  prm.declare_entry("Poisson's ratio", "0.2", Patterns::Double(-1, 0.5),
-                    "Poisson's ratio nu, in (-1, 0.5).");
+  EntryList::declare<LinearElasticEntries>(prm);
 }
 
 template <int dim>
 LinearElastic<dim>::LinearElastic(ParameterHandler &prm, const MaterialContext &context)
 {
-  E  = prm.get_double("Young's modulus");
-  nu = prm.get_double("Poisson's ratio");
+  const auto in = EntryList::parse<LinearElasticEntries>(prm);
+  E             = in.E;
+  nu            = in.nu;
   input::require_range(E, 0, std::numeric_limits<double>::max(), true,
                        context.section + "/Young's modulus");
   input::require_range(nu, -1, 0.5, true, context.section + "/Poisson's ratio");

@@ -28,11 +28,11 @@ namespace scenes
 /// The Brazilian scene's entries, declared and read from this one list.
 struct BrazilianEntries
 {
+  std::string centre, disc, top, bottom;
   double diameter = 0.15, length = 0.3, strip_width = 0.01, strip_thickness = 0.005;
   double velocity = 0.05, ramp = 1e-4, gauge = 0.075, stop_fraction = 0.3;
   double zone_depth          = 0;
   unsigned int zone_material = 2;
-  std::string centre, disc, top, bottom;
 
   void entries(EntryList &list)
   {
@@ -79,30 +79,21 @@ template <int dim>
 class Brazilian : public Scene<dim>, private BrazilianEntries
 {
 public:
-  static void declare_parameters(ParameterHandler &prm)
-  {
-    EntryList::declare<BrazilianEntries>(prm);
-  }
+  /// The entries, declared by the registration.
+  using Entries = BrazilianEntries;
 
   Brazilian(ParameterHandler &prm, const SceneContext<dim> &context)
       : BrazilianEntries(EntryList::parse<BrazilianEntries>(prm))
   {
     if (dim == 2)
       length = context.thickness;
-    disc         = input::trim(disc);
-    top          = input::trim(top);
-    bottom       = input::trim(bottom);
-    const auto c = input::parse_point<2>(centre, entry("Centre"));
+    const Point<2> c = input::parse_point<2>(centre, entry("Centre"));
     cx = c[0], cy = c[1];
-    const double big = 1e300;
-    input::require_range(diameter, 0, big, true, entry("Diameter"));
+    input::require_positive({{diameter, entry("Diameter")},
+                             {strip_thickness, entry("Strip thickness")},
+                             {velocity, entry("Loading velocity")}});
     input::require_range(strip_width, 0, diameter, true, entry("Strip width"));
-    AssertThrow(strip_width < diameter,
-                ExcBadInput(entry("Strip width"), "must be below " + entry("Diameter")));
-    input::require_range(strip_thickness, 0, big, true, entry("Strip thickness"));
-    input::require_range(velocity, 0, big, true, entry("Loading velocity"));
-    AssertThrow(velocity > 0, ExcBadInput(entry("Loading velocity"), "must be positive"));
-    input::require_range(ramp, 0, big, false, entry("Loading ramp time"));
+    input::require_range(ramp, 0, 1e300, false, entry("Loading ramp time"));
     input::require_range(gauge, 0, diameter, true, entry("Opening gauge length"));
     AssertThrow(gauge > 0 && gauge < diameter,
                 ExcBadInput(entry("Opening gauge length"), "must lie in (0, D)"));
@@ -115,7 +106,7 @@ public:
       AssertThrow(length > 0, ExcBadInput(entry("Length"), "must be positive"));
   }
 
-  void write_entries(EntryWriter &writer) const override
+  void write_entries(EntryWriter &writer) override
   {
     const double R = 0.5 * diameter, b = strip_width;
     const std::string disc_shape = cylinder_shape<dim>(cx, cy, R, length);
@@ -167,6 +158,7 @@ public:
         expression += "; 0";
       writer.set_body(name, "Prescribed velocity/Function expression", expression, owner);
     }
+    fracture_energy = fracture_energy_of(writer, writer.body(disc, entry("Disc")));
   }
 
   void check(const SceneState<dim> &state) const override
@@ -217,13 +209,8 @@ public:
 
   std::string finished(const SceneState<dim> &state) const override
   {
-    if (stop_fraction <= 0 || state.contact_forces == nullptr)
-      return {};
-    const unsigned int s = body_index(state, top, entry("Top strip"));
-    const double peak    = (*state.peak_contact_forces)[s];
-    if (peak > 0 && (*state.contact_forces)[s].norm() < stop_fraction * peak)
-      return "the load fell below " + number(stop_fraction) + " of its peak";
-    return {};
+    return load_fell_below(state, body_index(state, top, entry("Top strip")),
+                           stop_fraction);
   }
 
   void add_results(const SceneState<dim> &state,
@@ -259,6 +246,7 @@ public:
       }
     results["damage_share_near_loaded_diameter"]  = all > 0 ? near / all : 0;
     results["softened_band_height_over_diameter"] = hi > lo ? (hi - lo) / diameter : 0;
+    add_crack_energy(p, d, length, fracture_energy, results);
   }
 
 private:
@@ -297,7 +285,7 @@ private:
   }
 
   static std::string entry(const std::string &name) { return "Scene/brazilian/" + name; }
-  double cx = 0.1, cy = 0.1;
+  double cx = 0.1, cy = 0.1, fracture_energy = 0;
 };
 } // namespace scenes
 } // namespace lme_mpm

@@ -91,10 +91,8 @@ template <int dim>
 class DropWeight : public Scene<dim>, private DropWeightEntries
 {
 public:
-  static void declare_parameters(ParameterHandler &prm)
-  {
-    EntryList::declare<DropWeightEntries>(prm);
-  }
+  /// The entries, declared by the registration.
+  using Entries = DropWeightEntries;
 
   DropWeight(ParameterHandler &prm, const SceneContext<dim> &context)
       : DropWeightEntries(EntryList::parse<DropWeightEntries>(prm)),
@@ -102,33 +100,29 @@ public:
   {
     if (dim == 2)
       width = context.thickness;
-    beam             = input::trim(beam);
-    hammer           = input::trim(hammer);
     const auto names = input::parse_names(supports, 2, entry("Supports"));
     left = names[0], right = names[1];
-    const auto c = input::parse_point<2>(centre, entry("Beam centre"));
+    const Point<2> c = input::parse_point<2>(centre, entry("Beam centre"));
     cx = c[0], cy = c[1];
-    const double big = 1e300;
-    input::require_range(length, 0, big, true, entry("Beam length"));
-    input::require_range(depth, 0, big, true, entry("Beam depth"));
-    input::require_range(width, 0, big, true,
-                         dim == 3 ? entry("Length") : "Problem/Thickness");
+    input::require_positive({{length, entry("Beam length")},
+                             {depth, entry("Beam depth")},
+                             {width, dim == 3 ? entry("Length") : "Problem/Thickness"},
+                             {support, entry("Support radius")},
+                             {overhang, entry("Notch crack overhang")},
+                             {hammer_height, entry("Hammer height")},
+                             {hammer_mass, entry("Hammer mass")},
+                             {velocity, entry("Impact velocity")}});
     input::require_range(span, 0, length, true, entry("Span"));
-    input::require_range(support, 0, big, true, entry("Support radius"));
     input::require_range(notch_depth, 0, depth, true, entry("Notch depth"));
     input::require_range(notch_width, 0, span, true, entry("Notch width"));
-    input::require_range(overhang, 0, big, true, entry("Notch crack overhang"));
     input::require_range(hammer_width, 0, length, true, entry("Hammer width"));
-    input::require_range(hammer_height, 0, big, true, entry("Hammer height"));
-    input::require_range(hammer_mass, 0, big, true, entry("Hammer mass"));
-    input::require_range(velocity, 0, big, true, entry("Impact velocity"));
     if (dim == 3)
       AssertThrow(!notch_crack,
                   ExcBadInput(entry("Notch crack"), "must be false in 3D (explicit "
                                                     "cracks exist in 2D only)"));
   }
 
-  void write_entries(EntryWriter &writer) const override
+  void write_entries(EntryWriter &writer) override
   {
     writer.set_body(
         beam, "Shape",

@@ -1,6 +1,10 @@
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/scenes/scene_tools.h>
 
+#include <array>
+#include <cmath>
+#include <map>
+#include <numeric>
 #include <sstream>
 
 namespace lme_mpm
@@ -55,6 +59,134 @@ std::string ramped_velocity(const double vx, const double vy, const double ramp)
   if (dim == 3)
     s += "; 0";
   return s;
+}
+
+template <int dim>
+std::string load_fell_below(const SceneState<dim> &state, const unsigned int body,
+                            const double fraction)
+{
+  if (fraction <= 0 || state.contact_forces == nullptr)
+    return {};
+  const double peak = (*state.peak_contact_forces)[body];
+  if (peak > 0 && (*state.contact_forces)[body].norm() < fraction * peak)
+    return "the load fell below " + number(fraction) + " of its peak";
+  return {};
+}
+
+template <int dim>
+double crack_path_length(const ParticleStore<dim> &p, const unsigned int body,
+                         const double thickness, const double threshold)
+{
+  std::vector<std::size_t> cracked;
+  double area = 0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.body_id[i] == body && p.damage[i] >= threshold)
+      cracked.push_back(i), area += p.initial_volume[i] / (dim == 2 ? thickness : 1.0);
+  if (cracked.empty())
+    return 0;
+  // The particles' spacing in the x-y plane (their mean area's side; in 3D the
+  // volume's cube root).
+  const double s =
+      dim == 2 ? std::sqrt(area / cracked.size()) : std::cbrt(area / cracked.size());
+  // Clusters of particles within 1.5 spacings of each other, by union-find over
+  // square bins of that size.
+  const std::size_t n = cracked.size();
+  std::vector<std::size_t> root(n);
+  std::iota(root.begin(), root.end(), 0);
+  const auto find = [&](std::size_t a)
+  {
+    while (root[a] != a)
+      a = root[a] = root[root[a]];
+    return a;
+  };
+  const double link = 1.5 * s;
+  std::map<std::pair<long, long>, std::vector<std::size_t>> bins;
+  const auto key = [&](const std::size_t k)
+  {
+    const auto &x = p.reference_position[cracked[k]];
+    return std::make_pair(long(std::floor(x[0] / link)), long(std::floor(x[1] / link)));
+  };
+  for (std::size_t k = 0; k < n; ++k)
+    bins[key(k)].push_back(k);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const auto [bx, by] = key(k);
+    for (long dx = -1; dx <= 1; ++dx)
+      for (long dy = -1; dy <= 1; ++dy)
+      {
+        const auto it = bins.find({bx + dx, by + dy});
+        if (it == bins.end())
+          continue;
+        for (const std::size_t m : it->second)
+        {
+          const auto d =
+              p.reference_position[cracked[k]] - p.reference_position[cracked[m]];
+          if (d[0] * d[0] + d[1] * d[1] <= link * link)
+            root[find(k)] = find(m);
+        }
+      }
+  }
+  std::map<std::size_t, std::vector<std::size_t>> clusters;
+  for (std::size_t k = 0; k < n; ++k)
+    clusters[find(k)].push_back(cracked[k]);
+  const std::vector<std::size_t> *largest = nullptr;
+  for (const auto &[r, members] : clusters)
+    if (!largest || members.size() > largest->size())
+      largest = &members;
+  // Its main axis: the principal direction of the positions' covariance.
+  double mx = 0, my = 0;
+  for (const std::size_t i : *largest)
+    mx += p.reference_position[i][0], my += p.reference_position[i][1];
+  mx /= largest->size(), my /= largest->size();
+  double cxx = 0, cxy = 0, cyy = 0;
+  for (const std::size_t i : *largest)
+  {
+    const double dx = p.reference_position[i][0] - mx,
+                 dy = p.reference_position[i][1] - my;
+    cxx += dx * dx, cxy += dx * dy, cyy += dy * dy;
+  }
+  const double phi = 0.5 * std::atan2(2 * cxy, cxx - cyy);
+  const double ux = std::cos(phi), uy = std::sin(phi);
+  // Centroids of the slices one spacing wide along the axis, in order.
+  std::map<long, std::array<double, 3>> slices;
+  for (const std::size_t i : *largest)
+  {
+    const double x = p.reference_position[i][0], y = p.reference_position[i][1];
+    auto &c = slices[long(std::floor(((x - mx) * ux + (y - my) * uy) / s))];
+    c[0] += x, c[1] += y, c[2] += 1;
+  }
+  double length = s, px = 0, py = 0;
+  bool first = true;
+  for (const auto &[index, c] : slices)
+  {
+    const double x = c[0] / c[2], y = c[1] / c[2];
+    if (!first)
+      length += std::hypot(x - px, y - py);
+    px = x, py = y, first = false;
+  }
+  return length;
+}
+
+template <int dim>
+void add_crack_energy(const ParticleStore<dim> &particles, const unsigned int body,
+                      const double thickness, const double G_F,
+                      std::map<std::string, double> &results)
+{
+  const double area     = crack_path_length(particles, body, thickness) * thickness;
+  results["crack_area"] = area;
+  const auto dissipated = results.find("dissipated_energy");
+  if (G_F > 0 && area > 0 && dissipated != results.end())
+    results["fracture_energy_ratio"] = dissipated->second / (G_F * area);
+}
+
+double fracture_energy_of(const EntryWriter &writer, const unsigned int body)
+{
+  const std::string material =
+      writer.get(input::subsection_name("Body", body) + "/Material");
+  const std::string fracture = "Material " + material + "/Fracture/";
+  if (writer.get(fracture + "Model") == "none")
+    return 0;
+  return std::stod(writer.get(fracture + "Fracture energy"));
 }
 
 template <int dim>
@@ -119,6 +251,14 @@ template std::string cylinder_shape<2>(double, double, double, double);
 template std::string cylinder_shape<3>(double, double, double, double);
 template std::string ramped_velocity<2>(double, double, double);
 template std::string ramped_velocity<3>(double, double, double);
+template std::string load_fell_below(const SceneState<2> &, unsigned int, double);
+template std::string load_fell_below(const SceneState<3> &, unsigned int, double);
+template double crack_path_length(const ParticleStore<2> &, unsigned int, double, double);
+template double crack_path_length(const ParticleStore<3> &, unsigned int, double, double);
+template void add_crack_energy(const ParticleStore<2> &, unsigned int, double, double,
+                               std::map<std::string, double> &);
+template void add_crack_energy(const ParticleStore<3> &, unsigned int, double, double,
+                               std::map<std::string, double> &);
 template double damaged_volume(const ParticleStore<2> &, unsigned int);
 template double damaged_volume(const ParticleStore<3> &, unsigned int);
 template unsigned int body_index(const SceneState<2> &, const std::string &,

@@ -37,12 +37,12 @@ struct SemicircularBendingEntries
              "The specimen's radius R (m), > 0.");
     list.add("Flat edge centre", centre, "0.063, 0.015", Patterns::Anything(),
              "The centre of the flat edge (x, y in m); the arc lies above it.");
-    list.add("Length", length, "0.02", Patterns::Double(),
-             "3D only: the specimen's length along z (m), from z = 0. In 2D the "
-             "thickness is Problem/Thickness.");
     list.add("Notch angle", angle, "0", Patterns::Double(),
              "The notch's inclination from the vertical (degrees), in [0, 90); "
              "positive towards -x.");
+    list.add("Length", length, "0.02", Patterns::Double(),
+             "3D only: the specimen's length along z (m), from z = 0. In 2D the "
+             "thickness is Problem/Thickness.");
     list.add("Notch length", notch_length, "0.0166", Patterns::Double(),
              "The notch's length (m), in (0, R).");
     list.add("Notch width", notch_width, "0.001", Patterns::Double(),
@@ -90,37 +90,32 @@ template <int dim>
 class SemicircularBending : public Scene<dim>, private SemicircularBendingEntries
 {
 public:
-  static void declare_parameters(ParameterHandler &prm)
-  {
-    EntryList::declare<SemicircularBendingEntries>(prm);
-  }
+  using Entries = SemicircularBendingEntries; ///< declared by the registration
 
   SemicircularBending(ParameterHandler &prm, const SceneContext<dim> &context)
       : SemicircularBendingEntries(EntryList::parse<SemicircularBendingEntries>(prm))
   {
-    if (dim == 2)
-      length = context.thickness;
-    specimen           = input::trim(specimen);
-    load               = input::trim(load);
     const auto rollers = input::parse_names(supports, 2, entry("Support rollers"));
     left = rollers[0], right = rollers[1];
-    const auto c = input::parse_point<2>(centre, entry("Flat edge centre"));
+    const Point<2> c = input::parse_point<2>(centre, entry("Flat edge centre"));
     cx = c[0], cy = c[1];
-    const double big = 1e300;
-    input::require_range(radius, 0, big, true, entry("Radius"));
+    // In 2D the specimen is as long as the run's thickness.
+    if (dim == 2)
+      length = context.thickness;
+    input::require_positive({{radius, entry("Radius")},
+                             {roller, entry("Roller radius")},
+                             {velocity, entry("Loading velocity")},
+                             {overhang, entry("Notch crack overhang")}});
     input::require_range(angle, 0, 90, false, entry("Notch angle"));
     AssertThrow(angle < 90, ExcBadInput(entry("Notch angle"), "must lie in [0, 90)"));
     input::require_range(notch_length, 0, radius, true, entry("Notch length"));
     input::require_range(notch_width, 0, radius, true, entry("Notch width"));
     input::require_range(span, 0, 2 * radius, true, entry("Span"));
-    input::require_range(roller, 0, big, true, entry("Roller radius"));
-    input::require_range(velocity, 0, big, true, entry("Loading velocity"));
-    input::require_range(ramp, 0, big, false, entry("Loading ramp time"));
+    input::require_range(ramp, 0, 1e300, false, entry("Loading ramp time"));
     input::require_range(zone_depth, 0, radius, false, entry("Elastic zone depth"));
     input::require_range(stop_fraction, 0, 1, false, entry("Stop at load fraction"));
     AssertThrow(stop_fraction < 1,
                 ExcBadInput(entry("Stop at load fraction"), "must lie in [0, 1)"));
-    input::require_range(overhang, 0, big, true, entry("Notch crack overhang"));
     if (dim == 3)
     {
       AssertThrow(length > 0, ExcBadInput(entry("Length"), "must be positive"));
@@ -130,7 +125,7 @@ public:
     }
   }
 
-  void write_entries(EntryWriter &writer) const override
+  void write_entries(EntryWriter &writer) override
   {
     // The half disc, curved side up (in 3D it fills the grid's z extent).
     const std::string half_disc =
@@ -175,6 +170,8 @@ public:
                     entry("Loading roller"));
     writer.set_body(load, "Prescribed velocity/Function expression",
                     ramped_velocity<dim>(0, -velocity, ramp), entry("Loading roller"));
+    fracture_energy =
+        fracture_energy_of(writer, writer.body(specimen, entry("Specimen")));
   }
 
   void check(const SceneState<dim> &state) const override
@@ -204,13 +201,8 @@ public:
 
   std::string finished(const SceneState<dim> &state) const override
   {
-    if (stop_fraction <= 0 || state.contact_forces == nullptr)
-      return {};
-    const unsigned int l = body_index(state, load, entry("Loading roller"));
-    const double peak    = (*state.peak_contact_forces)[l];
-    if (peak > 0 && (*state.contact_forces)[l].norm() < stop_fraction * peak)
-      return "the load fell below " + number(stop_fraction) + " of its peak";
-    return {};
+    return load_fell_below(state, body_index(state, load, entry("Loading roller")),
+                           stop_fraction);
   }
 
   void add_results(const SceneState<dim> &state,
@@ -230,6 +222,7 @@ public:
       if (p.body_id[i] == s && p.damage[i] >= 0.99)
         top = std::max(top, p.reference_position[i][1]);
     results["softened_ligament_share"] = (top - tip_y) / (cy + radius - tip_y);
+    add_crack_energy(p, s, length, fracture_energy, results);
   }
 
 private:
@@ -244,7 +237,7 @@ private:
   {
     return "Scene/semicircular bending/" + name;
   }
-  double cx = 0.063, cy = 0.015;
+  double cx = 0.063, cy = 0.015, fracture_energy = 0;
   std::string left, right;
 };
 } // namespace scenes

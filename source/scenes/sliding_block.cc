@@ -36,28 +36,20 @@ public:
                "The Body N/Name of the block.");
     }
   };
-  static void declare_parameters(ParameterHandler &prm)
-  {
-    EntryList::declare<Entries>(prm);
-  }
-
   SlidingBlock(ParameterHandler &prm, const SceneContext<dim> &)
       : in(EntryList::parse<Entries>(prm))
   {
-    // The exact distance needs the block's friction (Contact/Friction coefficient),
-    // read from the top level: this constructor runs in Scene/sliding block.
-    prm.leave_subsection();
-    prm.leave_subsection();
-    friction =
-        prm.get_double(std::vector<std::string>{"Contact"}, "Friction coefficient");
-    prm.enter_subsection("Scene");
-    prm.enter_subsection("sliding block");
-    in.block = input::trim(in.block);
     input::require_range(in.angle, 0, 90, false, entry("Incline angle"));
     AssertThrow(in.angle < 90,
                 ExcBadInput(entry("Incline angle"), "must be below 90 degrees"));
     AssertThrow(std::isfinite(in.gravity) && in.gravity > 0,
                 ExcBadInput(entry("Gravity"), "must be finite and positive"));
+  }
+
+  /// The exact distance needs the block's friction.
+  void write_entries(EntryWriter &writer) override
+  {
+    friction = std::stod(writer.get("Contact/Friction coefficient"));
   }
 
   void adjust(RunParameters<dim> &run) const override

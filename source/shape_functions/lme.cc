@@ -1,4 +1,5 @@
 #include <lme_mpm/base/format.h>
+#include <lme_mpm/base/parameters.h>
 #include <lme_mpm/shape_functions/tensor_product.h>
 
 #include <algorithm>
@@ -46,36 +47,53 @@ using namespace lme_kernels;
  * 2D and 9.2 in 3D with the default cut-off, less on elongated cells of a graded grid
  * (about R^2 >= max_d (s_d^2 + sum_{e != d} (s_e / 2)^2) for a cell of spacings s).
  */
+/// The entries of the local max-ent functions, declared and read from this one list.
+struct LmeEntries
+{
+  double gamma = 1.8, tolerance = 1e-6, newton_tolerance = 1e-12;
+  unsigned int max_iterations = 50;
+
+  void entries(EntryList &list)
+  {
+    list.add("LME gamma", gamma, "1.8", Patterns::Double(0.1, 100),
+             "Locality gamma = beta h^2 of the local max-ent shape functions (h: local "
+             "node spacing). Larger values give more local functions, tending to linear "
+             "interpolation; smaller ones give smoother, wider functions. Common: 1.8 "
+             "to 4.");
+    list.add("LME tolerance", tolerance, "1e-6", Patterns::Double(1e-14, 1e-2),
+             "Support cut-off of the local max-ent functions: nodes with exp(-gamma "
+             "|x - x_I|^2 / h^2) below this are dropped, so the support radius is R = h "
+             "sqrt(-ln(tolerance) / gamma).");
+    list.add("LME Newton tolerance", newton_tolerance, "1e-12",
+             Patterns::Double(1e-15, 1e-4),
+             "The Newton solve for the local max-ent multiplier stops when |sum_I N_I "
+             "(x - x_I)| < tolerance * h, i.e. when linear fields are reproduced to "
+             "this fraction of the spacing.");
+    list.add("LME maximum iterations", max_iterations, "50", Patterns::Integer(1, 1000),
+             "Newton iterations allowed per particle and step; a particle needing more "
+             "stops the run with an error.");
+  }
+};
+
 template <int dim>
 class LME : public ShapeFunction<dim>
 {
 public:
   static void declare_parameters(ParameterHandler &prm)
   {
-    prm.declare_entry("LME gamma", "1.8", Patterns::Double(0.1, 100),
-                      "Locality gamma = beta h^2 of the local max-ent shape "
-                      "functions (h: local node spacing). Larger values give more "
-                      "local functions, tending to linear interpolation; smaller "
-                      "ones give smoother, wider functions. Common: 1.8 to 4.");
-    prm.declare_entry("LME tolerance", "1e-6", Patterns::Double(1e-14, 1e-2),
-                      "Support cut-off of the local max-ent functions: nodes with "
-                      "exp(-gamma |x - x_I|^2 / h^2) below this are dropped, so the "
-                      "support radius is R = h sqrt(-ln(tolerance) / gamma).");
-    prm.declare_entry("LME Newton tolerance", "1e-12", Patterns::Double(1e-15, 1e-4),
-                      "The Newton solve for the local max-ent multiplier stops when "
-                      "|sum_I N_I (x - x_I)| < tolerance * h, i.e. when linear "
-                      "fields are reproduced to this fraction of the spacing.");
-    prm.declare_entry("LME maximum iterations", "50", Patterns::Integer(1, 1000),
-                      "Newton iterations allowed per particle and step; a particle "
-                      "needing more stops the run with an error.");
+    EntryList::declare<LmeEntries>(prm);
   }
 
   LME(ParameterHandler &prm, const ShapeFunctionContext<dim> &context)
-      : grid(*context.grid), gamma(prm.get_double("LME gamma")),
-        newton_tol(prm.get_double("LME Newton tolerance")),
+      : LME(EntryList::parse<LmeEntries>(prm), context)
+  {
+  }
+
+  LME(const LmeEntries &in, const ShapeFunctionContext<dim> &context)
+      : grid(*context.grid), gamma(in.gamma), newton_tol(in.newton_tolerance),
         cheap_step_limit(std::pow(24 * newton_tol, 0.25)),
-        max_iterations(prm.get_integer("LME maximum iterations")),
-        radius_over_h(std::sqrt(-std::log(prm.get_double("LME tolerance")) / gamma))
+        max_iterations(in.max_iterations),
+        radius_over_h(std::sqrt(-std::log(in.tolerance) / gamma))
   {
     // h of a cell is its smallest spacing, so the largest h over the grid is the
     // smallest over directions of the largest spacing in that direction.
@@ -113,7 +131,8 @@ public:
     }
     // The index box is up to 4 (2D) or 8 (3D) times the ball; the connectivity is
     // sized by this bound, so take the tighter count of the ball where it is smaller.
-    max_nodes = std::min(max_nodes, nodes_in_ball_bound(R_max, h_min_d));
+    max_nodes =
+        std::min(max_nodes, lme_kernels::nodes_in_ball_bound<dim>(R_max, h_min_d));
   }
 
   std::string name() const override { return "lme"; }
@@ -538,31 +557,6 @@ private:
       gradN[I] = (N[I] * inv_h) * ((-2 * gamma * scratch.w[I]) * scratch.y[I] +
                                    (2 * gamma) * s + Mt * (scratch.y[I] - r));
     particles.lme_lambda_rate[p] = M * (inv_h * inv_h);
-  }
-
-  /**
-   * Upper bound of the nodes within distance R of any point, on a product grid whose
-   * spacing along d is at least h[d]. The planes (rows) of nodes sorted by distance
-   * from the point: the i-th is at least i h / 2 away (i + 1 of them span i h), and
-   * a row holds at most floor(2 rho / h_x) + 1 nodes within rho of it.
-   */
-  static unsigned int nodes_in_ball_bound(const double R,
-                                          const std::array<double, dim> &h)
-  {
-    const double R2   = R * R * (1 + 1e-12); // rounding must not drop a node
-    const auto in_row = [&](const double rho2)
-    { return static_cast<unsigned int>(std::floor(2 * std::sqrt(rho2) / h[0])) + 1; };
-    unsigned int count = 0;
-    for (unsigned int i = 0; i * h[dim - 1] / 2 <= std::sqrt(R2); ++i)
-    {
-      const double dz2 = std::pow(i * h[dim - 1] / 2, 2);
-      if constexpr (dim == 2)
-        count += in_row(R2 - dz2);
-      else
-        for (unsigned int j = 0; j * h[1] / 2 <= std::sqrt(R2 - dz2); ++j)
-          count += in_row(R2 - dz2 - std::pow(j * h[1] / 2, 2));
-    }
-    return count;
   }
 
   /// Wolfe constants of the line search (sufficient decrease, curvature).

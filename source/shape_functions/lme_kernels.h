@@ -8,6 +8,7 @@
 
 #include <deal.II/base/tensor.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -126,6 +127,30 @@ inline void polynomial_step(const Tensor<1, dim> *y, const unsigned int n,
   }
   const double step_r = step * r; // log Z(mu + step) - log Z(mu) = step . r + log S
   F += step_r + normalise(N, y, n, r, J);
+}
+/**
+ * Upper bound of the nodes within distance R of any point, on a product grid whose
+ * spacing along d is at least h[d]. The planes (rows) of nodes sorted by distance
+ * from the point: the i-th is at least i h / 2 away (i + 1 of them span i h), and
+ * a row holds at most floor(2 rho / h_x) + 1 nodes within rho of it.
+ */
+template <int dim>
+unsigned int nodes_in_ball_bound(const double R, const std::array<double, dim> &h)
+{
+  const double R2   = R * R * (1 + 1e-12); // rounding must not drop a node
+  const auto in_row = [&](const double rho2)
+  { return static_cast<unsigned int>(std::floor(2 * std::sqrt(rho2) / h[0])) + 1; };
+  unsigned int count = 0;
+  for (unsigned int i = 0; i * h[dim - 1] / 2 <= std::sqrt(R2); ++i)
+  {
+    const double dz2 = std::pow(i * h[dim - 1] / 2, 2);
+    if constexpr (dim == 2)
+      count += in_row(R2 - dz2);
+    else
+      for (unsigned int j = 0; j * h[1] / 2 <= std::sqrt(R2 - dz2); ++j)
+        count += in_row(R2 - dz2 - std::pow(j * h[1] / 2, 2));
+  }
+  return count;
 }
 } // namespace lme_kernels
 } // namespace shape_functions

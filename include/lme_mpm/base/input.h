@@ -49,6 +49,8 @@ std::string concise_message(const std::exception &e);
 /// Throws ExcBadInput unless lo < value < hi (open) or lo <= value <= hi.
 void require_range(double value, double lo, double hi, bool open,
                    const std::string &entry);
+/// require_range(value, 0, 1e300, true, entry) for each (value, entry).
+void require_positive(const std::vector<std::pair<double, std::string>> &values);
 
 /**
  * Parses the ParsedFunction declared in subsection @p section of the current one.

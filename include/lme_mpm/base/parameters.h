@@ -69,10 +69,19 @@ public:
     else if constexpr (std::is_floating_point_v<T>)
       value = prm.get_double(name);
     else
-      value = prm.get(name);
+      value = trim(prm.get(name));
   }
 
 private:
+  /// Text entries without surrounding blanks (names are compared as written).
+  static std::string trim(const std::string &text)
+  {
+    const auto b = text.find_first_not_of(" \t\n\r");
+    return b == std::string::npos
+               ? ""
+               : text.substr(b, text.find_last_not_of(" \t\n\r") + 1 - b);
+  }
+
   dealii::ParameterHandler &prm;
   const Mode mode;
 };

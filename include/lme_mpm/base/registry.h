@@ -4,6 +4,8 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <lme_mpm/base/parameters.h>
+
 #include <functional>
 #include <map>
 #include <memory>
@@ -158,15 +160,26 @@ struct HasDeclareParameters<Plugin, std::void_t<decltype(Plugin::declare_paramet
     : std::true_type
 {
 };
+/// True if Plugin names the struct of its entries (Plugin::Entries, with
+/// entries(EntryList &)).
+template <class Plugin, class = void>
+struct HasEntries : std::false_type
+{
+};
+template <class Plugin>
+struct HasEntries<Plugin, std::void_t<typename Plugin::Entries>> : std::true_type
+{
+};
 } // namespace internal
 
 /**
  * Registers class @p Plugin (derived from RegistryType::base_type) as @p name in
  * RegistryType::instance(). The plug-in is built from (ParameterHandler &, const
  * Context &) if it has such a constructor, else from (const Context &); its static
- * declare_parameters(ParameterHandler &), if any and unless @p where is
- * PluginEntries::none, declares its entries. Returns true so that it can initialise
- * a static variable.
+ * declare_parameters(ParameterHandler &), if any, or else the struct Plugin::Entries
+ * it names (entries(EntryList &), the one list it also reads), declares its entries
+ * unless @p where is PluginEntries::none. Returns true so that it can initialise a
+ * static variable.
  */
 template <class RegistryType, class Plugin>
 bool register_plugin(const std::string &name, const std::string &description,
@@ -178,9 +191,17 @@ bool register_plugin(const std::string &name, const std::string &description,
   typename RegistryType::Entry entry;
   entry.description = description;
   if constexpr (internal::HasDeclareParameters<Plugin>::value)
+  {
     if (where != PluginEntries::none)
       entry.declare = [](dealii::ParameterHandler &prm)
       { Plugin::declare_parameters(prm); };
+  }
+  else if constexpr (internal::HasEntries<Plugin>::value)
+  {
+    if (where != PluginEntries::none)
+      entry.declare = [](dealii::ParameterHandler &prm)
+      { EntryList::declare<typename Plugin::Entries>(prm); };
+  }
   entry.own_subsection = where == PluginEntries::own_subsection;
   entry.create         = [](dealii::ParameterHandler &prm, const Context &context)
   {

@@ -3,6 +3,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <lme_mpm/base/parameters.h>
 #include <lme_mpm/base/registry.h>
 #include <lme_mpm/fracture/neighbourhood.h>
 #include <lme_mpm/particles/particle_store.h>
@@ -108,6 +109,20 @@ public:
 
 template <int dim>
 using FractureModelRegistry = Registry<FractureModel<dim>, FractureContext>;
+
+/**
+ * The entries of "Material N/Fracture" that more than one model reads: the
+ * neighbourhood's size and the fracture energy, with their checks.
+ */
+struct SharedFractureEntries
+{
+  double epsilon_factor = 2, fracture_energy = 100;
+  void entries(EntryList &list);
+  /// Reads them from @p prm (in "Material N/Fracture", named @p section in messages)
+  /// and checks them; throws ExcBadInput naming the entry.
+  static SharedFractureEntries parse(dealii::ParameterHandler &prm,
+                                     const std::string &section);
+};
 
 /**
  * Entries of "Material N/Fracture" that more than one model reads ("Epsilon factor",

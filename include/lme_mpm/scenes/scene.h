@@ -112,11 +112,14 @@ public:
   /// Sets run parameters that follow from the scene's entries (called before the run
   /// is set up); throws ExcBadInput naming the entry on a conflict.
   virtual void adjust(RunParameters<dim> &) const {}
-  /// Writes entries of other subsections that follow from the scene's own (a body's
-  /// shape from a strip width, a loading velocity) through @p writer; called right
-  /// after the scene is built, before anything else reads the file. The default calls
-  /// set_entries() on the handler.
-  virtual void write_entries(EntryWriter &writer) const { set_entries(writer.handler()); }
+  /**
+   * Writes entries of other subsections that follow from the scene's own (a body's
+   * shape from a strip width, a loading velocity) through @p writer, and reads what
+   * the scene needs of them (EntryWriter::get); called right after the scene is
+   * built, before anything else reads the file. The default calls set_entries() on
+   * the handler.
+   */
+  virtual void write_entries(EntryWriter &writer) { set_entries(writer.handler()); }
   /// The earlier form of write_entries(): writes into @p prm at its top level with
   /// set_body_entry(). Kept for scenes written against it.
   virtual void set_entries(ParameterHandler &) const {}

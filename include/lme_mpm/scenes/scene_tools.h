@@ -36,6 +36,39 @@ std::string ramped_velocity(double vx, double vy, double ramp);
  */
 void set_notch_crack(EntryWriter &writer, const std::string &body,
                      const std::string &polyline, const std::string &owner);
+/**
+ * A load test's stop: once the contact force on body @p body (its mean over the last
+ * history row) has fallen below @p fraction of its peak, the reason to end the run
+ * (empty before, with a fraction of 0, or without contact), as a testing machine
+ * stops after the specimen fails.
+ */
+template <int dim>
+std::string load_fell_below(const SceneState<dim> &state, unsigned int body,
+                            double fraction);
+/**
+ * The crack the damage field of @p body shows, in the x-y plane of the reference
+ * configuration: the particles with damage >= @p threshold, linked where they lie
+ * within 1.5 particle spacings of each other; of the largest such cluster, the
+ * particles are sorted along its main axis (the principal direction of their
+ * positions), cut into slices one spacing wide, and the centroids of successive
+ * slices joined. Returns that polyline's length plus one spacing (the crack's extent
+ * within its end slices), in m; 0 without damaged particles. The particle spacing is
+ * the square root of a particle's initial area (volume over @p thickness in 2D).
+ */
+template <int dim>
+double crack_path_length(const ParticleStore<dim> &particles, unsigned int body,
+                         double thickness, double threshold = 0.99);
+/**
+ * Adds crack_area (crack_path_length() times @p thickness, m^2) and, with a fracture
+ * energy @p G_F > 0, fracture_energy_ratio = dissipated_energy / (G_F crack_area) to
+ * @p results.
+ */
+template <int dim>
+void add_crack_energy(const ParticleStore<dim> &particles, unsigned int body,
+                      double thickness, double G_F,
+                      std::map<std::string, double> &results);
+/// The fracture energy of the material body @p body is made of (0 without fracture).
+double fracture_energy_of(const EntryWriter &writer, unsigned int body);
 /// The damaged volume of @p body: sum of damage times volume over its particles (m^3
 /// in 3D, m^2 in 2D).
 template <int dim>

@@ -1,6 +1,4 @@
-// Checkpoints: a run resumed from one ends bit for bit where the uninterrupted run
-// does (also through fracture, crack growth and a redone transfer), and a checkpoint
-// of another run or format is refused with a clear message.
+// Checkpoints: a resumed run ends bitwise identical.
 #include <gtest/gtest.h>
 
 #include "test_helpers.h"
@@ -154,29 +152,4 @@ TEST(Checkpoint, TooNarrowSlabsAreRedone)
                    cut_reach);
     expect_same_run(a, b);
   }
-}
-
-TEST(Checkpoint, GrowingCrackResumesBitwiseIdentical)
-{
-  // The coarse panel through crack initiation and growth; the last checkpoint falls
-  // after the crack has started to grow, so the resumed run must rebuild the grown
-  // crack and its second fields exactly. Linear shape functions keep it short under
-  // the sanitizers.
-  const std::vector<std::string> o = {"Shape functions/Type=linear",
-                                      "Grid/Cell size=0.05",
-                                      "Body 1/Holes=slot(0, 0.5, 0.25, 0.025, 0)",
-                                      "Time/End time=22",
-                                      "Output/Write particle files=false",
-                                      "Output/Verbosity=0",
-                                      "Checkpoint/Every steps=600"};
-  const std::string prm            = lme_mpm_test::scene("mode_i_panel.prm");
-  const std::string a              = lme_mpm_test::scratch("crack_ckpt_a"),
-                    b              = lme_mpm_test::scratch("crack_ckpt_b");
-  const auto full                  = run(prm, o, a);
-  const std::string grown          = file_text(a + "/cracks.csv");
-  EXPECT_GT(std::count(grown.begin(), grown.end(), '\n'), 4) << grown; // it grew
-  EXPECT_GT(full.at("steps"), 1800);
-  run_and_resume(prm, with_settings(o, {}, b), b);
-  expect_same_run(a, b);
-  EXPECT_EQ(grown, file_text(b + "/cracks.csv"));
 }

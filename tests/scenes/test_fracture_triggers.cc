@@ -1,6 +1,5 @@
-// Skipping fracture work where a model cannot act: neighbourhood rows only around
-// the particles above a model's trigger, with results equal bit for bit to the full
-// update; and the per-stage timers of a run.
+// Fracture triggers on whole runs: rows only near a trigger change nothing; the stage
+// table of a fracture run.
 #include <deal.II/base/parameter_handler.h>
 
 #include <gtest/gtest.h>
@@ -19,61 +18,6 @@ using namespace lme_mpm;
 
 namespace
 {
-template <int dim>
-void check_seeded_rows(const unsigned int n, const double radius, const double share)
-{
-  std::mt19937 rng(5 + dim);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Point<dim>> x(n);
-  for (auto &p : x)
-    for (unsigned int d = 0; d < dim; ++d)
-      p[d] = u(rng);
-  std::vector<std::uint16_t> body(n);
-  std::vector<std::uint8_t> seeds(n);
-  for (unsigned int p = 0; p < n; ++p)
-  {
-    body[p] = x[p][0] < 0.5 ? 0 : 1;
-    // Seeds at random; seven particles in ten take a row.
-    seeds[p] = (u(rng) < share ? Neighbourhood<dim>::seed : 0) |
-               (u(rng) < 0.7 ? Neighbourhood<dim>::takes_row : 0);
-  }
-  Neighbourhood<dim> full, seeded;
-  full.build(x, radius, &body);
-  seeded.build(x, radius, &body, {}, &seeds);
-  std::size_t rows = 0;
-  for (unsigned int p = 0; p < n; ++p)
-  {
-    bool near = false;
-    for (unsigned int q = 0; q < n && !near && (seeds[p] & Neighbourhood<dim>::takes_row);
-         ++q)
-      near = (seeds[q] & Neighbourhood<dim>::seed) && x[p].distance(x[q]) <= radius;
-    ASSERT_EQ(seeded.has_row(p), near) << "particle " << p;
-    rows += near;
-    if (near)
-      ASSERT_EQ(std::vector<std::uint32_t>(seeded.begin(p), seeded.end(p)),
-                std::vector<std::uint32_t>(full.begin(p), full.end(p)))
-          << "particle " << p;
-    else
-      ASSERT_EQ(seeded.begin(p), seeded.end(p));
-  }
-  EXPECT_EQ(seeded.n_rows(), rows);
-  EXPECT_GT(rows, 0u);
-  EXPECT_LT(rows, n); // some particles were skipped, so the check means something
-  EXPECT_EQ(full.n_rows(), n);
-
-  // No seed, or no particle that takes a row: no row at all.
-  for (const std::uint8_t keep :
-       {Neighbourhood<dim>::takes_row, Neighbourhood<dim>::seed})
-  {
-    for (auto &f : seeds)
-      f &= keep;
-    seeded.build(x, radius, &body, {}, &seeds);
-    EXPECT_EQ(seeded.n_rows(), 0u);
-    for (unsigned int p = 0; p < n; ++p)
-      ASSERT_FALSE(seeded.has_row(p));
-  }
-}
-
 /// Runs @p model over a loading history twice, once with every row and once with rows
 /// only around the particles above its trigger, and compares the particles bit for bit.
 void check_trigger_changes_nothing(const std::string &model_name, ParameterHandler &prm,
@@ -160,16 +104,6 @@ void check_trigger_changes_nothing(const std::string &model_name, ParameterHandl
 }
 } // namespace
 
-TEST(Neighbourhood, SeededRowsAreTheFullRowsNearASeed2D)
-{
-  check_seeded_rows<2>(3000, 0.03, 0.002);
-}
-
-TEST(Neighbourhood, SeededRowsAreTheFullRowsNearASeed3D)
-{
-  check_seeded_rows<3>(3000, 0.08, 0.002);
-}
-
 namespace
 {
 /// The check above for @p model with the entries @p entries of "Material N/Fracture";
@@ -206,26 +140,6 @@ TEST(FractureTriggers, EigenerosionWithRowsOnlyNearTheTriggerChangesNothing)
       trigger_check("eigenerosion", {{"Fracture energy", "4"}});
   EXPECT_GT(skipped, 0u);
   EXPECT_GT(changed, 5u);
-}
-
-TEST(StageTimer, NestedStagesPauseTheOuterOne)
-{
-  // The inner stage is ten times the outer one's own time, so counting it twice would
-  // show whatever the scheduler adds to the sleeps.
-  StageTimer timer;
-  const unsigned int outer = timer.add("outer"), inner = timer.add("inner");
-  {
-    StageTimer::Scope a(timer, outer);
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    {
-      StageTimer::Scope b(timer, inner);
-      std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    }
-  }
-  const auto s = timer.seconds();
-  EXPECT_GE(s.at("inner"), 0.200);
-  EXPECT_GE(s.at("outer"), 0.020);
-  EXPECT_LT(s.at("outer"), 0.200); // the inner stage's time is not counted twice
 }
 
 TEST(StageTimer, AFractureRunReportsWhereTheTimeWent)

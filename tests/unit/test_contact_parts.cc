@@ -1,0 +1,177 @@
+// The parts of contact on their own: fields per body at shared nodes, the nodal
+// exchange between pairs (momentum kept, approach removed), and the force means the
+// output reads.
+#include <gtest/gtest.h>
+
+#include <lme_mpm/contact/body_contact.h>
+#include <lme_mpm/output/force_means.h>
+
+#include <memory>
+
+using namespace lme_mpm;
+
+namespace
+{
+/// Two blocks of particles, one cell apart, moving towards each other along x.
+struct TwoBlocks
+{
+  BackgroundGrid<2> grid;
+  ParticleStore<2> particles;
+  Bodies<2> bodies;
+  std::unique_ptr<ShapeFunction<2>> functions;
+  std::unique_ptr<GridTransfer<2>> transfer;
+  std::unique_ptr<BodyContact<2>> contact;
+
+  explicit TwoBlocks(const std::string &exchange)
+  {
+    grid.reinit(Point<2>(0, 0),
+                {{std::vector<double>(10, 0.1), std::vector<double>(6, 0.1)}});
+    for (const int body : {0, 1})
+      for (unsigned int i = 0; i < 6; ++i)
+        for (unsigned int j = 0; j < 4; ++j)
+        {
+          const double x0 = body == 0 ? 0.2 : 0.5;
+          const std::size_t p =
+              particles.add(Point<2>(x0 + 0.05 * i + 0.025, 0.2 + 0.05 * j + 0.025),
+                            body == 0 ? 1.0 : 3.0, 2.5e-3, 0, body);
+          particles.velocity[p] = Tensor<1, 2>({body == 0 ? 1.0 : -0.5, 0.1 * body});
+        }
+    for (std::size_t p = 0; p < particles.size(); ++p)
+      particles.id[p] = p;
+    dealii::ParameterHandler prm;
+    Bodies<2>::declare_parameters(prm, 2);
+    BodyContact<2>::declare_parameters(prm);
+    ShapeFunctionRegistry<2>::instance().declare_all(prm);
+    prm.enter_subsection("Contact");
+    prm.set("Type", "multi-field");
+    prm.set("Exchange", exchange);
+    prm.set("Contact volume fraction", "0.1");
+    prm.leave_subsection();
+    bodies.parse_parameters(prm, 2, {});
+    ShapeFunctionContext<2> context;
+    context.grid = &grid;
+    functions    = ShapeFunctionRegistry<2>::instance().create("linear", prm, context);
+    transfer     = std::make_unique<GridTransfer<2>>(grid, particles);
+    contact      = std::make_unique<BodyContact<2>>(grid, *transfer, particles, bodies);
+    contact->parse_parameters(prm, 1.0, functions->support_radius(grid));
+    transfer->nodes().layout.reinit(grid.n_nodes());
+    EXPECT_EQ(transfer->locate_and_sort(), particles.size());
+    contact->assign_fields(particles, transfer->nodes().layout);
+    transfer->particles_to_grid(*functions, {},
+                                [&](const std::size_t b, const std::size_t e)
+                                { contact->separate(transfer->connectivity(), b, e); });
+  }
+
+  /// Half the rates' mass-weighted squares, summed over the fields.
+  double kinetic_energy() const
+  {
+    double e = 0;
+    for (const unsigned int F : transfer->nodes().active)
+      e += 0.5 * transfer->nodes().mass[F] * transfer->nodes().rate[F].norm_square();
+    return e;
+  }
+  Tensor<1, 2> nodal_momentum() const
+  {
+    Tensor<1, 2> m;
+    for (const unsigned int F : transfer->nodes().active)
+      m += transfer->nodes().mass[F] * transfer->nodes().rate[F];
+    return m;
+  }
+};
+} // namespace
+
+TEST(BodyFields, SharedNodesGetAFieldPerBodyAndPairsFollowTheirBody)
+{
+  TwoBlocks s("nodal");
+  const BodyFields<2> &fields = s.contact->body_fields();
+  ASSERT_TRUE(fields.active());
+  ASSERT_FALSE(fields.shared_nodes().empty());
+  const FieldLayout &layout = s.transfer->nodes().layout;
+  for (const unsigned int I : fields.shared_nodes())
+  {
+    EXPECT_EQ(fields.field_of_body(I, 0), I); // the lowest body keeps the node's own
+    const unsigned int F = fields.field_of_body(I, 1);
+    ASSERT_NE(F, FieldLayout::invalid);
+    EXPECT_NE(F, I);
+    EXPECT_EQ(layout.node_of(F), I);
+  }
+  // Every particle-node pair goes to a field of the particle's own body.
+  const Connectivity<2> &conn = s.transfer->connectivity();
+  for (std::size_t p = 0; p < s.particles.size(); ++p)
+    for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+    {
+      const unsigned int F = conn.nodes[p * conn.stride + k];
+      const unsigned int I = layout.node_of(F);
+      EXPECT_EQ(fields.field_of_body(I, s.particles.body_id[p]), F);
+    }
+}
+
+TEST(ContactPairs, NodalExchangeKeepsMomentumAndStopsEveryApproach)
+{
+  TwoBlocks s("nodal");
+  ExplicitNewmark newmark;
+  s.transfer->predict_rates(newmark, 0, 1e-20);
+  ContactPairs<2> pairs;
+  pairs.set_up(s.grid, "larger volume", 0.1, 0.0, "", 2, 1.0);
+  pairs.find(s.contact->body_fields(), s.bodies, *s.transfer, s.particles, 1e-20);
+  ASSERT_FALSE(pairs.empty());
+  auto &rate                 = s.transfer->nodes().rate;
+  const auto &mass           = s.transfer->nodes().mass;
+  const Tensor<1, 2> before  = s.nodal_momentum();
+  const double energy_before = s.kinetic_energy();
+  unsigned int approaching   = 0;
+  for (const auto &q : pairs.list())
+    approaching += (rate[q.a] - rate[q.b]) * q.normal > 0;
+  EXPECT_GT(approaching, 0u);
+  pairs.exchange(
+      rate, mass, [&](const unsigned int F) { return rate[F]; }, 1.0, true, s.bodies,
+      [](const auto &, const Tensor<1, 2> &, bool) {});
+  for (const auto &q : pairs.list())
+  {
+    // Normals are unit vectors from a to b; frictionless: only the normal part moves.
+    EXPECT_NEAR(q.normal.norm(), 1.0, 1e-14);
+    EXPECT_LE((rate[q.a] - rate[q.b]) * q.normal, 1e-12);
+  }
+  EXPECT_NEAR((s.nodal_momentum() - before).norm(), 0, 1e-12 * before.norm());
+  // The exchange is inelastic: the rates' kinetic energy does not grow.
+  EXPECT_LT(s.kinetic_energy(), energy_before);
+}
+
+TEST(BodyContact, ProjectedExchangeKeepsParticleMomentum)
+{
+  TwoBlocks s("projected");
+  ExplicitNewmark newmark;
+  s.transfer->predict_rates(newmark, 0, 1e-20);
+  Tensor<1, 2> before, after;
+  for (std::size_t p = 0; p < s.particles.size(); ++p)
+    before += s.particles.mass[p] * s.particles.velocity[p];
+  s.contact->on_rates(1e-20, 1e-4);
+  ASSERT_GT(s.contact->n_contact_pairs(), 0u);
+  for (std::size_t p = 0; p < s.particles.size(); ++p)
+    after += s.particles.mass[p] * s.particles.velocity[p];
+  EXPECT_NEAR((after - before).norm(), 0, 1e-12 * before.norm());
+  // Equal and opposite forces on the two bodies.
+  const auto &f = s.contact->step_forces();
+  EXPECT_NEAR((f[0] + f[1]).norm(), 0, 1e-9 * f[0].norm());
+  EXPECT_LT(f[0][0], 0); // the left block is pushed back
+}
+
+TEST(ForceMeans, RowMeanIsTheImpulseOverTheIntervalAndPeaksAreKept)
+{
+  ForceMeans<2> means;
+  means.reset(2);
+  const std::vector<Tensor<1, 2>> a = {Tensor<1, 2>({2, 0}), Tensor<1, 2>({-2, 0})};
+  const std::vector<Tensor<1, 2>> b = {Tensor<1, 2>({4, 0}), Tensor<1, 2>({-4, 0})};
+  // A first row with no step behind it reports the step's force.
+  means.close_row(a, true);
+  EXPECT_EQ(means.mean()[0][0], 2.0);
+  means.book(a, 0.1);
+  means.book(b, 0.3);
+  means.close_row(b, true);
+  EXPECT_NEAR(means.mean()[0][0], (0.2 + 1.2) / 0.4, 1e-14);
+  EXPECT_NEAR(means.peak()[1], 3.5, 1e-14);
+  means.book(a, 0.1);
+  means.close_row(a, true);
+  EXPECT_NEAR(means.mean()[0][0], 2.0, 1e-14);
+  EXPECT_NEAR(means.peak()[0], 3.5, 1e-14); // the peak stays
+}

@@ -1,0 +1,228 @@
+// Fracture models and softening laws on particles set up by hand.
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <gtest/gtest.h>
+
+#include <lme_mpm/fracture/crack_set.h>
+#include <lme_mpm/fracture/fracture_coupling.h>
+#include <lme_mpm/fracture/fracture_model.h>
+#include <lme_mpm/fracture/neighbourhood.h>
+#include <lme_mpm/fracture/softening_law.h>
+
+#include "test_helpers.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <random>
+
+using namespace lme_mpm;
+
+TEST(SofteningLaws, AreaEqualsFractureEnergy)
+{
+  for (const char *name : {"linear", "bilinear", "exponential"})
+  {
+    SofteningContext c;
+    c.tensile_strength = 3e6;
+    c.fracture_energy  = 100;
+    ParameterHandler prm;
+    const auto law   = SofteningLawRegistry::instance().create(name, prm, c);
+    const double w_c = law->critical_opening();
+    EXPECT_DOUBLE_EQ(law->traction_ratio(0), 1.0) << name;
+    EXPECT_EQ(law->traction_ratio(w_c), 0.0) << name;
+    double area = 0, previous = 1;
+    const unsigned int n = 200000;
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      const double g = law->traction_ratio((i + 0.5) * w_c / n);
+      EXPECT_LE(g, previous) << name;
+      previous = g;
+      area += g * w_c / n;
+    }
+    // Exponential: the tail beyond g = 1e-3 is cut (0.1 % of G_F).
+    const double expected = std::string(name) == "exponential" ? 0.999 : 1.0;
+    EXPECT_NEAR(area * c.tensile_strength / c.fracture_energy, expected, 1e-4) << name;
+  }
+}
+
+TEST(FractureParameters, EachModelDeclaresWhatItReads)
+{
+  for (const std::string name : {"eigenerosion", "eigensoftening"})
+  {
+    const auto *entry = FractureModelRegistry<2>::instance().find(name);
+    ASSERT_TRUE(entry && entry->declare) << name;
+    EXPECT_FALSE(entry->own_subsection) << name; // straight into "Material N/Fracture"
+    ParameterHandler prm;
+    entry->declare(prm);
+    EXPECT_EQ(prm.get("Epsilon factor"), "2") << name; // the shared entries
+    EXPECT_EQ(prm.get("Fracture energy"), "100") << name;
+  }
+  // What declare_shared_fracture_parameters() relies on: deal.II takes a second
+  // declaration of an entry, which replaces the first one, value included.
+  ParameterHandler prm;
+  prm.declare_entry("Entry", "1", Patterns::Double(0), "first");
+  prm.set("Entry", "5");
+  prm.declare_entry("Entry", "2", Patterns::Double(0), "second");
+  EXPECT_EQ(prm.get("Entry"), "2");
+  // So the shared entries, declared by both built-in models and once more at the end,
+  // come out as if declared once.
+  ParameterHandler once, twice;
+  declare_fracture_parameters<2>(once);
+  declare_fracture_parameters<2>(twice);
+  declare_fracture_parameters<2>(twice);
+  std::ostringstream a, b;
+  once.print_parameters(a, ParameterHandler::PRM);
+  twice.print_parameters(b, ParameterHandler::PRM);
+  EXPECT_EQ(a.str(), b.str());
+  EXPECT_NE(a.str().find("Energy release factor"), std::string::npos);
+  EXPECT_NE(a.str().find("Tensile strength"), std::string::npos);
+}
+
+TEST(Eigensoftening, UnloadingDoesNotHeal)
+{
+  ParameterHandler prm;
+  declare_fracture_parameters<2>(prm);
+  prm.set("Model", "eigensoftening");
+  prm.set("Tensile strength", "3e6");
+  prm.set("Fracture energy", "50");
+  prm.set("Band width", "0.01");
+  FractureContext fc;
+  fc.grid_spacing   = 0.01;
+  fc.p_wave_modulus = 30e9;
+  fc.section        = "test";
+  const auto model =
+      FractureModelRegistry<2>::instance().create("eigensoftening", prm, fc);
+
+  ParticleStore<2> P;
+  P.add(Point<2>(0, 0), 1.0, 1.0, 0, 0);
+  Neighbourhood<2> nb;
+  nb.build(P.position, model->epsilon(0.01));
+  FractureFields F;
+  auto load = [&](const double strain)
+  {
+    P.strain[0]            = SymmetricTensor<2, 2>();
+    P.strain[0][0][0]      = strain;
+    P.stress[0]            = 30e9 * P.strain[0];
+    F.max_principal_stress = {P.stress[0][0][0]};
+    F.energy_density       = {0.5 * (P.stress[0] * P.strain[0])};
+    model->update(P, nb, F, 0, 1, 0);
+    return P.damage[0];
+  };
+  EXPECT_EQ(load(0.9e-4), 0.0);
+  EXPECT_EQ(P.onset_strain[0], 0.0); // below f_t: no onset
+  load(1.01e-4);                     // onset
+  EXPECT_GT(P.onset_strain[0], 0.0);
+  const double d1 = load(1.2e-4);
+  EXPECT_GT(d1, 0.0);
+  EXPECT_LT(d1, 1.0);
+  // The effective stress follows the cohesive law: (1 - chi) sigma = f_t g(w) < f_t.
+  EXPECT_LT((1 - d1) * 30e9 * 1.2e-4, 3.03e6);
+  const double d_unload = load(0.5e-4); // unloading keeps the damage
+  EXPECT_EQ(d_unload, d1);
+  const double diss = P.dissipated[0];
+  EXPECT_GT(diss, 0);
+  const double d2 = load(1.5e-4); // reloading past the old strain damages further
+  EXPECT_GT(d2, d1);
+  EXPECT_GT(P.dissipated[0], diss);
+  load(1e-2); // far beyond w_c: fully failed
+  EXPECT_EQ(P.damage[0], 1.0);
+  EXPECT_EQ(P.failed[0], 1);
+}
+
+TEST(Eigensoftening, DissipatesFractureEnergyWhateverItsOwnStressAtOnset)
+{
+  // Onset is triggered by the neighbourhood's mean stress, so a particle may start
+  // softening with its own stress s0 above or below f_t. One particle of a band
+  // h = 0.05 m wide (volume h per unit crack area) pulled until it fails must still
+  // dissipate G_F per unit area. With the law anchored at f_t it dissipated
+  // G_F [1 + (s0^2/f_t^2 - 1) h / (2 l_ch)]: 1.19 G_F at s0 = 1.5 f_t, 0.94 at 0.8.
+  const double E = 30e9, f_t = 3e6, G_F = 50, h = 0.05;
+  ParameterHandler prm;
+  declare_fracture_parameters<2>(prm);
+  prm.set("Model", "eigensoftening");
+  prm.set("Tensile strength", std::to_string(f_t));
+  prm.set("Fracture energy", std::to_string(G_F));
+  prm.set("Band width", std::to_string(h));
+  FractureContext fc;
+  fc.grid_spacing   = 0.01;
+  fc.p_wave_modulus = E;
+  fc.section        = "test";
+  for (const char *name : {"linear", "exponential"})
+    for (const double ratio : {0.8, 1.0, 1.5})
+    {
+      prm.set("Softening law", name);
+      const auto model =
+          FractureModelRegistry<2>::instance().create("eigensoftening", prm, fc);
+      ParticleStore<2> P;
+      P.add(Point<2>(0, 0), 1.0, h, 0, 0);
+      Neighbourhood<2> nb;
+      nb.build(P.position, model->epsilon(0.01));
+      const double s0   = ratio * f_t;
+      P.onset_strain[0] = s0 / E;
+      P.onset_stress[0] = s0;
+      FractureFields F;
+      // Strain steps of 1e-3 eps_0: the secant dissipation sum, first order in the
+      // step, is then within 0.06 %.
+      const double step = 1e-3 * s0 / E;
+      for (double strain = s0 / E; !P.failed[0] && strain < 1; strain += step)
+      {
+        P.strain[0]            = SymmetricTensor<2, 2>();
+        P.strain[0][0][0]      = strain;
+        P.stress[0]            = E * P.strain[0];
+        F.max_principal_stress = {P.stress[0][0][0]};
+        F.energy_density       = {0.5 * (P.stress[0] * P.strain[0])};
+        model->update(P, nb, F, 0, 1, 0);
+      }
+      ASSERT_TRUE(P.failed[0]) << name << " s0/f_t = " << ratio;
+      std::cout << name << " law, s0/f_t = " << ratio
+                << ": dissipated / G_F = " << P.dissipated[0] / G_F << "\n";
+      EXPECT_NEAR(P.dissipated[0] / G_F, 1.0, 0.01) << name << " s0/f_t = " << ratio;
+    }
+}
+
+TEST(Eigensoftening, OnsetAveragesOverTheParticlesOwnBodyOnly)
+{
+  // A platen (body 0) pressed against a specimen (body 1), the two touching along
+  // x = 0: the platen at ten times f_t, the specimen in tension below it. Within the
+  // neighbourhood (eps = 2 h = 0.02) the mixed average would exceed f_t; the
+  // specimen's own does not, so only the platen's particles reach onset.
+  ParameterHandler prm;
+  MaterialSet<2>::declare_parameters(prm, 1);
+  FractureCoupling<2>::declare_parameters(prm, 1);
+  prm.enter_subsection("Material 1");
+  prm.set("Density", "2400");
+  prm.enter_subsection("Fracture");
+  prm.set("Model", "eigensoftening");
+  prm.set("Tensile strength", "3e6");
+  prm.leave_subsection();
+  prm.leave_subsection();
+  MaterialSet<2> materials;
+  materials.parse_parameters(prm, 1, false);
+  BackgroundGrid<2> grid; // uniform, h = 0.01
+  grid.reinit(Point<2>(-0.1, -0.1),
+              {{std::vector<double>(20, 0.01), std::vector<double>(20, 0.01)}});
+  FractureCoupling<2> coupling;
+  coupling.parse_parameters(prm, materials, grid, 1);
+
+  ParticleStore<2> store;
+  for (unsigned int i = 0; i < 8; ++i)
+    for (unsigned int j = 0; j < 8; ++j)
+    {
+      const unsigned int body = i < 4 ? 0 : 1;
+      const auto p = store.add(Point<2>(0.0025 + 0.005 * (double(i) - 4), 0.005 * j), 1.0,
+                               1.0, 0, body);
+      store.stress[p][0][0] = body == 0 ? 30e6 : 1e6;
+      store.strain[p][0][0] = store.stress[p][0][0] / 30e9;
+    }
+  coupling.update(store);
+  for (std::size_t p = 0; p < store.size(); ++p)
+    if (store.body_id[p] == 0)
+      EXPECT_GT(store.onset_strain[p], 0.0) << "platen particle " << p;
+    else
+      EXPECT_EQ(store.onset_strain[p], 0.0)
+          << "specimen particle " << p << " at x = " << store.position[p][0];
+}

@@ -1,0 +1,179 @@
+// Neighbourhood: the epsilon-neighbourhood against brute force, within a body and on
+// one side of a crack.
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <gtest/gtest.h>
+
+#include <lme_mpm/fracture/crack_set.h>
+#include <lme_mpm/fracture/fracture_coupling.h>
+#include <lme_mpm/fracture/fracture_model.h>
+#include <lme_mpm/fracture/neighbourhood.h>
+#include <lme_mpm/fracture/softening_law.h>
+
+#include "test_helpers.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <random>
+
+using namespace lme_mpm;
+
+namespace
+{
+/// Random particles in the unit cube; with @p body, body(x) gives each one's body.
+template <int dim>
+void check_neighbourhood_against_brute_force(
+    const unsigned int n, const double radius,
+    const std::function<std::uint16_t(const Point<dim> &)> &body = {})
+{
+  std::mt19937 rng(11 + dim);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point<dim>> x(n);
+  for (auto &p : x)
+    for (unsigned int d = 0; d < dim; ++d)
+      p[d] = u(rng);
+  std::vector<std::uint16_t> ids(n, 0);
+  if (body)
+    std::transform(x.begin(), x.end(), ids.begin(), body);
+  Neighbourhood<dim> nb;
+  nb.build(x, radius, body ? &ids : nullptr);
+  ASSERT_EQ(nb.size(), n);
+  for (unsigned int p = 0; p < n; ++p)
+  {
+    std::vector<std::uint32_t> brute;
+    for (unsigned int q = 0; q < n; ++q)
+      if (x[p].distance(x[q]) <= radius && ids[p] == ids[q])
+        brute.push_back(q);
+    ASSERT_EQ(std::vector<std::uint32_t>(nb.begin(p), nb.end(p)), brute)
+        << "particle " << p;
+  }
+}
+
+} // namespace
+
+TEST(Neighbourhood, AgreesWithBruteForce2D)
+{
+  check_neighbourhood_against_brute_force<2>(3000, 0.04);
+}
+
+TEST(Neighbourhood, AgreesWithBruteForce3D)
+{
+  check_neighbourhood_against_brute_force<3>(2000, 0.12);
+}
+
+TEST(Neighbourhood, StaysWithinTheParticlesOwnBody)
+{
+  // Two rectangles touching along x = 0.5, and a third body of scattered particles
+  // inside the second: no row holds a particle of another body.
+  check_neighbourhood_against_brute_force<2>(
+      3000, 0.04,
+      [](const Point<2> &p) {
+        return std::uint16_t(p[0] < 0.5 ? 0 : (std::fmod(p[1] * 100, 1) < 0.1 ? 7 : 1));
+      });
+  check_neighbourhood_against_brute_force<3>(
+      2000, 0.12, [](const Point<3> &p) { return std::uint16_t(p[2] < 0.5 ? 3 : 2); });
+  // One body throughout: every particle within the radius, as without body ids.
+  check_neighbourhood_against_brute_force<2>(3000, 0.04,
+                                             [](const Point<2> &) { return 5; });
+  // Thread-count independent.
+  std::vector<Point<2>> x;
+  std::vector<std::uint16_t> body;
+  for (unsigned int i = 0; i < 60; ++i)
+    for (unsigned int j = 0; j < 40; ++j)
+      x.emplace_back(0.01 * i, 0.01 * j), body.push_back(i < 30 ? 0 : 1);
+  Neighbourhood<2> one, two;
+  MultithreadInfo::set_thread_limit(1);
+  one.build(x, 0.025, &body);
+  MultithreadInfo::set_thread_limit(2);
+  two.build(x, 0.025, &body);
+  MultithreadInfo::set_thread_limit();
+  ASSERT_EQ(one.n_pairs(), two.n_pairs());
+  for (std::size_t p = 0; p < x.size(); ++p)
+    ASSERT_TRUE(std::equal(one.begin(p), one.end(p), two.begin(p), two.end(p))) << p;
+}
+
+TEST(Neighbourhood, StaysOnItsSideOfAnExplicitCrack)
+{
+  // A crack with a kink across part of the unit square: no row holds a particle whose
+  // straight line to the particle crosses it, unless the path round an end of the
+  // crack is within the radius (near a tip); every other pair within the radius is
+  // kept (checked against a brute-force segment intersection).
+  const std::vector<std::vector<Point<2>>> lines = {
+      {Point<2>(-0.1, 0.5), Point<2>(0.4, 0.5), Point<2>(0.7, 0.62)},
+      {Point<2>(0.2, 0.1), Point<2>(0.2, 0.3)}};
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point<2>> x(3000);
+  for (auto &p : x)
+    p = Point<2>(u(rng), u(rng));
+  const double radius = 0.05;
+  CrackSegmentBins<2> bins;
+  bins.build(lines, radius);
+  Neighbourhood<2> nb;
+  nb.build(x, radius, nullptr,
+           [&](const std::size_t p, const std::size_t q)
+           { return bins.separates(x[p], x[q]); });
+  const auto cross =
+      [](const Point<2> &a, const Point<2> &b, const Point<2> &c, const Point<2> &d)
+  {
+    const auto side = [](const Point<2> &o, const Point<2> &e, const Point<2> &f)
+    { return (e[0] - o[0]) * (f[1] - o[1]) - (e[1] - o[1]) * (f[0] - o[0]); };
+    return side(a, b, c) * side(a, b, d) < 0 && side(c, d, a) * side(c, d, b) < 0;
+  };
+  std::size_t cut = 0, round_tip = 0;
+  for (std::size_t p = 0; p < x.size(); ++p)
+  {
+    std::vector<std::uint32_t> brute;
+    for (std::size_t q = 0; q < x.size(); ++q)
+    {
+      if (x[p].distance(x[q]) > radius)
+        continue;
+      bool cut_off = false, near_tip = false;
+      for (const auto &line : lines)
+        for (std::size_t k = 0; k + 1 < line.size(); ++k)
+          if (cross(x[p], x[q], line[k], line[k + 1]))
+          {
+            const double detour =
+                std::min(x[p].distance(line.front()) + line.front().distance(x[q]),
+                         x[p].distance(line.back()) + line.back().distance(x[q]));
+            cut_off  = cut_off || detour > radius;
+            near_tip = near_tip || detour <= radius;
+          }
+      if (cut_off)
+        ++cut;
+      else
+        brute.push_back(q);
+      round_tip += near_tip && !cut_off;
+    }
+    ASSERT_EQ(std::vector<std::uint32_t>(nb.begin(p), nb.end(p)), brute)
+        << "particle " << p;
+  }
+  EXPECT_GT(cut, 1000u);     // the crack does cut pairs
+  EXPECT_GT(round_tip, 20u); // and keeps some round its tips
+}
+
+TEST(Neighbourhood, BuildTimePerParticle)
+{
+  // 2D, 4 particles per cell of 1 mm, eps = 2 mm (C_eps = 2): about 50 neighbours each.
+  std::vector<Point<2>> x;
+  for (unsigned int i = 0; i < 400; ++i)
+    for (unsigned int j = 0; j < 250; ++j)
+      x.emplace_back(0.5e-3 * i + 0.25e-3, 0.5e-3 * j + 0.25e-3);
+  Neighbourhood<2> nb;
+  nb.build(x, 2e-3);
+  const auto start = std::chrono::steady_clock::now();
+  for (int k = 0; k < 5; ++k)
+    nb.build(x, 2e-3);
+  const double ns =
+      std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start)
+          .count() /
+      (5.0 * x.size());
+  std::cout << "neighbourhood build: " << ns << " ns per particle, "
+            << double(nb.n_pairs()) / x.size() << " neighbours per particle" << std::endl;
+  EXPECT_GT(nb.n_pairs(), 40 * x.size());
+}

@@ -1,0 +1,67 @@
+// The stable time step: CFL times h_min / c_P, landing exactly on the end time, and
+// clear errors naming the entry when it cannot.
+#include <gtest/gtest.h>
+
+#include <lme_mpm/base/input.h>
+#include <lme_mpm/solver/run_parameters.h>
+
+#include <cmath>
+
+using namespace lme_mpm;
+
+namespace
+{
+std::string error_of(const RunParameters<2> &run, const double h, const double c)
+{
+  try
+  {
+    stable_time_step(run, h, c);
+  }
+  catch (const std::exception &e)
+  {
+    return input::concise_message(e);
+  }
+  return "";
+}
+} // namespace
+
+TEST(StableTimeStep, CflStepThatLandsOnTheEndTime)
+{
+  RunParameters<2> run;
+  run.cfl        = 0.3;
+  run.end_time   = 1e-3;
+  const double h = 0.01, c = 2900; // 966.7 CFL steps to the end time
+  const TimeStepping ts = stable_time_step(run, h, c);
+  // At most the CFL step, and n steps of it make the end time.
+  EXPECT_LE(ts.dt, 0.3 * h / c * (1 + 1e-12));
+  EXPECT_GT(ts.dt, 0.3 * h / c * (1 - 1.0 / ts.n_steps));
+  EXPECT_EQ(ts.n_steps, 967u);
+  EXPECT_NEAR(ts.dt * ts.n_steps, run.end_time, 1e-15);
+}
+
+TEST(StableTimeStep, FixedStepWithinTheLimitIsKept)
+{
+  RunParameters<2> run;
+  run.fixed_time_step   = 1e-6;
+  run.end_time          = 1e-4;
+  const TimeStepping ts = stable_time_step(run, 0.01, 3000);
+  EXPECT_EQ(ts.n_steps, 100u);
+  EXPECT_NEAR(ts.dt, 1e-6, 1e-18);
+}
+
+TEST(StableTimeStep, EveryImpossibleStepNamesItsEntry)
+{
+  RunParameters<2> run;
+  run.end_time        = 1;
+  run.fixed_time_step = 1; // far beyond h / c
+  EXPECT_NE(error_of(run, 0.01, 3000).find("Time/Time step"), std::string::npos);
+  run.fixed_time_step = 0;
+  run.cfl             = 1.5; // above Maximum CFL = 1
+  EXPECT_NE(error_of(run, 0.01, 3000).find("Time/CFL"), std::string::npos);
+  run.cfl = 0.3;
+  // 3e10 steps.
+  EXPECT_NE(error_of(run, 1e-7, 1e4).find("Time/End time"), std::string::npos);
+  // A wave speed that is not finite.
+  EXPECT_NE(error_of(run, 0.01, std::numeric_limits<double>::infinity()).find("Time/CFL"),
+            std::string::npos);
+}
