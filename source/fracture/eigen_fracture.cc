@@ -39,18 +39,24 @@ struct EigensofteningEntries
              "w_c (m) where the law reaches zero traction; 0: the law's own value "
              "(linear 2 G_F/f_t, bilinear 3.6 G_F/f_t).");
     list.add("Band width", band_width, "0", Patterns::Double(0),
-             "h_eps (m), the width the crack opening is spread over; 0 ties it to the "
-             "band a crack localises in on the grid (crack-band regularisation): the "
-             "local grid spacing h (the shortest side of the particle's cell at t = 0) "
-             "times the shape functions' band in cells, 1 for linear functions and "
-             "wider for smoother ones, measured from the functions at the start "
-             "(doc/theory.md).");
+             "h_eps (m), the width the crack opening is spread over by the 'crack band' "
+             "and 'paper' rules; 0 ties it to the band a crack localises in on the "
+             "grid: the local grid spacing h (the shortest side of the particle's cell "
+             "at t = 0) times the shape functions' band in cells, 1 for linear "
+             "functions and wider for smoother ones, measured from the functions at "
+             "the start for a crack along the grid lines (doc/theory.md). Not used by "
+             "'measured band'.");
     list.add("Damage rule", damage_rule, "crack band",
-             Patterns::Selection("crack band|paper"),
+             Patterns::Selection("crack band|measured band|paper"),
              "'crack band': the damage makes the particle's max principal stress follow "
-             "the cohesive law, so the band dissipates G_F per unit area; 'paper': chi "
-             "= 1 - g((eps_I - eps_onset) h_eps), the draft's eq. 22 (dissipates more "
-             "than G_F: doc/theory.md).");
+             "the cohesive law at the opening of a band h_eps wide, so the band "
+             "dissipates G_F per unit area where the crack localises in that width; "
+             "'measured band': the same law at the opening of the band the particle "
+             "lies in, its particles' damaged strains integrated across it along the "
+             "max principal strain, G_F per unit area at any angle to the grid (the "
+             "integral sees the particle's own body only); 'paper': chi = 1 - g((eps_I "
+             "- eps_onset) h_eps), the draft's eq. 22 (dissipates more than G_F: "
+             "doc/theory.md).");
   }
 };
 
@@ -65,7 +71,7 @@ public:
   }
 
   Eigensoftening(ParameterHandler &prm, const FractureContext &c)
-      : grid_spacing(c.grid_spacing)
+      : grid_spacing(c.grid_spacing), thickness(c.dim == 2 ? c.thickness : 1.0)
   {
     const auto shared = SharedFractureEntries::parse(prm, c.section);
     const auto in     = EntryList::parse<EigensofteningEntries>(prm);
@@ -77,13 +83,19 @@ public:
     sc.section          = c.section;
     input::require_range(sc.tensile_strength, 0, 1e300, true,
                          c.section + "/Tensile strength");
-    f_t        = sc.tensile_strength;
-    law        = SofteningLawRegistry::instance().create(in.law, prm, sc);
-    w_c        = law->critical_opening();
-    band_width = in.band_width;
-    paper_rule = in.damage_rule == "paper";
+    f_t           = sc.tensile_strength;
+    law           = SofteningLawRegistry::instance().create(in.law, prm, sc);
+    w_c           = law->critical_opening();
+    band_width    = in.band_width;
+    paper_rule    = in.damage_rule == "paper";
+    measured_band = in.damage_rule == "measured band";
     // A band wider than M / (f_t max|g'|) snaps back: the softening branch cannot be
     // followed. Checked with the P-wave modulus here and per particle at onset.
+    AssertThrow(
+        !(measured_band && band_width > 0),
+        ExcBadInput(c.section + "/Band width",
+                    "must be 0 with 'Damage rule = measured band', which measures "
+                    "the band instead of setting its width"));
     if (band_width > 0 && !paper_rule && c.p_wave_modulus > 0)
     {
       const double limit = c.p_wave_modulus / (f_t * law->max_slope());
@@ -96,6 +108,11 @@ public:
 
   std::string name() const override { return "eigensoftening"; }
   double epsilon(const double h) const override { return C_eps * h; }
+  /// Far enough to hold a crack band (band_cells h either side) for its opening.
+  double search_radius(const double h) const override
+  {
+    return std::max(C_eps, measured_band ? band_cells : 0.0) * h;
+  }
   /// The mass-weighted mean exceeds f_t only if some neighbour's stress does (failed
   /// neighbours count with zero). The margin covers the rounding of the sums.
   FractureTrigger trigger(double) const override
@@ -141,7 +158,10 @@ public:
       const double h = band_width > 0 ? band_width : F.band_cells_of(P.body_id[p]) * h_p;
       const double strain_beyond = eps_I - P.onset_strain[p];
       double chi_new             = 0;
-      if (paper_rule)
+      if (measured_band)
+        chi_new = band_damage(P, nb, F, p, h_p, eps_I, sig_I,
+                              std::pow(std::max(C_eps, band_cells) * h_p, 2), snapped);
+      else if (paper_rule)
         chi_new = 1 - law->traction_ratio(std::max(0.0, strain_beyond) * h);
       else
       {
@@ -189,6 +209,87 @@ public:
   }
 
 private:
+  /**
+   * The damage of softening particle @p p from the opening of the crack band it lies
+   * in. Across a band the crack strains of its particles (the part of the max
+   * principal strain their damage does not carry) integrate to the crack's opening w;
+   * every particle of the band follows the cohesive law at that w, so the band loses
+   * its traction together and dissipates G_F per unit crack area, however many
+   * particles across it soften and however it crosses the grid. The integral runs
+   * along p's max principal strain direction n over the particles of its
+   * neighbourhood, each weighted by a hat kernel of its distance from the line
+   * through p (half-width h_p) and divided by the share of that line's neighbourhood
+   * the body fills (so a band that ends at a free surface is measured right). p's own
+   * crack strain enters implicitly: w = W + a (eps_I - eps_I t(w) / sigma_I), with W
+   * the others' part (from the snapshot) and a p's own weight.
+   */
+  double band_damage(ParticleStore<dim> &P, const Neighbourhood<dim> &nb,
+                     const FractureFields &F, const std::size_t p, const double h_p,
+                     const double eps_I, const double sig_I, const double eps2,
+                     unsigned long &snapped) const
+  {
+    const double s0 = P.onset_stress[p], r = s0 / f_t, w_end = w_c / r;
+    if (!(eps_I > 0 && sig_I > 0) || !nb.has_row(p))
+      return 0;
+    const Tensor<1, dim> n = eigenvectors(P.strain[p])[0].second;
+    const double rho = h_p, rho2 = rho * rho;
+    const auto kernel = [&](const double t2)
+    {
+      const double d = std::sqrt(t2) / rho;
+      return dim == 2 ? (1 - d) / rho : 3 * (1 - d) / (M_PI * rho2);
+    };
+    double band = 0, coverage = 0;
+    for (auto q = nb.begin(p); q != nb.end(p); ++q)
+    {
+      const Tensor<1, dim> d = P.position[*q] - P.position[p];
+      const double r2        = d.norm_square();
+      if (r2 > eps2)
+        continue;
+      const double along = d * n, t2 = r2 - along * along;
+      if (t2 >= rho2)
+        continue;
+      const double weight = P.initial_volume[*q] / thickness * kernel(t2);
+      // The body's share of the disc around p, with a hat along n too.
+      if (std::abs(along) < rho)
+        coverage += weight * (1 - std::abs(along) / rho) / rho;
+      if (*q != p)
+        band += weight * F.crack_strain[*q];
+    }
+    const double share = std::min(1.0, coverage);
+    if (!(share > 0))
+      return 0;
+    const double others = band / share;
+    const double a      = P.initial_volume[p] / thickness * kernel(0) / share;
+    const auto traction = [&](const double w) { return s0 * law->traction_ratio(r * w); };
+    double w            = others;
+    if (others < w_end)
+    {
+      // f(w) = others + a eps_I (1 - t(w) / sigma_I) - w, decreasing below the
+      // particle's own snap-back limit.
+      const auto f = [&](const double x)
+      { return others + a * eps_I * (1 - traction(x) / sig_I) - x; };
+      if (a * eps_I * s0 * r * law->max_slope() / sig_I >= 1)
+        ++snapped;
+      if (f(others) > 0)
+      {
+        double lo = others, hi = std::min(w_end, others + a * eps_I);
+        if (f(hi) > 0)
+          lo = hi;
+        for (int i = 0; i < 60 && hi > lo; ++i)
+        {
+          const double mid       = 0.5 * (lo + hi);
+          (f(mid) > 0 ? lo : hi) = mid;
+        }
+        w = 0.5 * (lo + hi);
+      }
+    }
+    P.crack_opening[p] = w;
+    if (w >= w_end * (1 - 1e-12))
+      return 1;
+    const double t = traction(w);
+    return sig_I > t ? 1 - t / sig_I : 0.0;
+  }
+
   /**
    * The opening of the band particle @p p lies in, as a fraction of p's critical
    * opening w_c f_t / s0_p: the largest of its own (@p own) and those of the softening
@@ -260,8 +361,10 @@ private:
     return 0.5 * (lo + hi);
   }
 
-  double grid_spacing, C_eps = 0, f_t = 0, w_c = 0, band_width = 0;
-  bool paper_rule = false;
+  double grid_spacing, thickness, C_eps = 0, f_t = 0, w_c = 0, band_width = 0;
+  /// How far either side of a particle its crack band's opening is summed, in cells.
+  static constexpr double band_cells = 3;
+  bool paper_rule = false, measured_band = false;
   std::unique_ptr<SofteningLaw> law;
   mutable std::atomic<unsigned long> snap_back_count{0};
 };

@@ -110,7 +110,7 @@ double FractureCoupling<dim>::reach_at(const double h) const
   double r = 0;
   for (const auto &f : models)
     if (f)
-      r = std::max(r, f->epsilon(h));
+      r = std::max(r, f->search_radius(h));
   double band = 0;
   for (const double b : fields.band_reach)
     band = std::max(band, b);
@@ -159,7 +159,7 @@ void FractureCoupling<dim>::prepare(const ParticleStore<dim> &store)
   for (const auto &f : models)
     if (f)
     {
-      radius                  = std::max(radius, f->epsilon(h_largest));
+      radius                  = std::max(radius, f->search_radius(h_largest));
       const FractureTrigger t = f->trigger(h_largest);
       if (t.field == FractureTrigger::Field::none)
         seeded_rows = false;
@@ -172,6 +172,7 @@ void FractureCoupling<dim>::prepare(const ParticleStore<dim> &store)
   fields.max_principal_stress.resize(n);
   fields.energy_density.resize(n);
   fields.crack_opening.resize(n);
+  fields.crack_strain.resize(n);
   seeds.resize(n);
   prepared_size    = n;
   prepared_version = store.order_version();
@@ -195,10 +196,14 @@ void FractureCoupling<dim>::take_snapshot(const ParticleStore<dim> &store,
     fields.max_principal_stress[p] = s;
     fields.energy_density[p]       = w;
     fields.crack_opening[p]        = store.crack_opening[p];
+    // Only softening and failed particles have one (a principal strain each).
+    const double chi = store.failed[p] ? 1.0 : store.damage[p];
+    fields.crack_strain[p] =
+        chi > 0 ? chi * std::max(0.0, eigenvalues(store.strain[p])[0]) : 0.0;
     // Only alive particles of a material with a model read their row; a softening
     // particle reads it every step where its band shares their openings.
     const bool reads     = alive && models[store.material_id[p]] != nullptr;
-    const bool softening = shares_openings && alive && store.onset_strain[p] != 0;
+    const bool softening = alive && store.onset_strain[p] != 0;
     seeds[p] =
         (s > stress_bound || w > energy_bound || softening ? Neighbourhood<dim>::seed
                                                            : 0) |

@@ -49,7 +49,8 @@ namespace
 /**
  * Particles as CSV rows 'id[,body],x0,x1,...,x0_0,x0_1,...,damage' (current, then
  * reference position), those for which @p keep holds, with @p damage as the last
- * column.
+ * column; @p with_body adds the body and, after the damage, each particle's
+ * dissipated energy (J) and crack opening (m).
  */
 template <int dim, class Keep, class Damage>
 void write_particle_points(const std::string &file, const ParticleStore<dim> &store,
@@ -61,7 +62,8 @@ void write_particle_points(const std::string &file, const ParticleStore<dim> &st
     out << ",x" << d;
   for (unsigned int d = 0; d < dim; ++d)
     out << ",x0_" << d;
-  out << ",damage\n" << std::setprecision(10);
+  out << (with_body ? ",damage,dissipated,crack_opening\n" : ",damage\n")
+      << std::setprecision(10);
   for (std::size_t p = 0; p < store.size(); ++p)
     if (keep(p))
     {
@@ -72,7 +74,10 @@ void write_particle_points(const std::string &file, const ParticleStore<dim> &st
         out << ',' << store.position[p][d];
       for (unsigned int d = 0; d < dim; ++d)
         out << ',' << store.reference_position[p][d];
-      out << ',' << damage(p) << '\n';
+      out << ',' << damage(p);
+      if (with_body)
+        out << ',' << store.dissipated[p] << ',' << store.crack_opening[p];
+      out << '\n';
     }
 }
 } // namespace

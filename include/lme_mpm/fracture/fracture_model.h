@@ -33,6 +33,10 @@ struct FractureFields
   std::vector<double> band_reach;
   /// ParticleStore::crack_opening, kept once failed: the band's other particles read it
   std::vector<double> crack_opening;
+  /// The crack strain of each particle: the part of its max principal strain its
+  /// damage does not carry, damage times that strain (the whole strain once failed,
+  /// 0 for an intact particle). Across a crack band it integrates to the opening.
+  std::vector<double> crack_strain;
 
   double spacing_of(const std::size_t p, const double uniform_spacing) const
   {
@@ -91,7 +95,9 @@ public:
   virtual std::string name() const = 0;
   /// Radius of the epsilon-neighbourhood (m) of a particle whose local grid spacing
   /// (FractureFields::spacing) is @p h.
-  virtual double epsilon(double h) const              = 0;
+  virtual double epsilon(double h) const = 0;
+  /// How far from a particle its neighbours are searched (m), at least epsilon(@p h).
+  virtual double search_radius(const double h) const { return epsilon(h); }
   virtual void update(ParticleStore<dim> &particles, const Neighbourhood<dim> &neighbours,
                       const FractureFields &fields, std::size_t begin, std::size_t end,
                       unsigned int material_id) const = 0;
