@@ -3,8 +3,29 @@
 #include <lme_mpm/base/tensor_tools.h>
 #include <lme_mpm/output/particle_output.h>
 
+#include <cmath>
+#include <limits>
+
 namespace lme_mpm
 {
+namespace
+{
+/// The largest principal value for output: a closed form without cancellation in 2D
+/// (deal.II's tr^2 - 4 det can round below zero for a nearly isotropic tensor with a
+/// tiny shear), and NaN for a state that is not finite (a run that went unstable still
+/// writes its last state).
+template <int dim>
+double largest_principal(const SymmetricTensor<2, dim> &s)
+{
+  if (!std::isfinite(s.norm()))
+    return std::numeric_limits<double>::quiet_NaN();
+  if constexpr (dim == 2)
+    return 0.5 * (s[0][0] + s[1][1]) + std::hypot(0.5 * (s[0][0] - s[1][1]), s[0][1]);
+  else
+    return max_principal(s);
+}
+} // namespace
+
 template <int dim>
 ParticleOutput<dim>::ParticleOutput(const std::string &directory)
     : particle_files(directory, "particles")
@@ -109,7 +130,7 @@ void ParticleOutput<dim>::patches(
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int j = i; j < dim; ++j)
           patch.data(k++, 0) = (*s)[i][j];
-    patch.data(k++, 0) = max_principal(stress);
+    patch.data(k++, 0) = largest_principal(stress);
     patch.data(k++, 0) = particles.damage[p];
     patch.data(k++, 0) = particles.failed[p];
     patch.data(k++, 0) = particles.onset_strain[p];
