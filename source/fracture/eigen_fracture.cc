@@ -109,6 +109,7 @@ public:
   std::string name() const override { return "eigensoftening"; }
   double epsilon(const double h) const override { return C_eps * h; }
   /// Far enough to hold a crack band (band_cells h either side) for its opening.
+  bool reads_crack_strains() const override { return measured_band; }
   double search_radius(const double h) const override
   {
     return std::max(C_eps, measured_band ? band_cells : 0.0) * h;

@@ -153,13 +153,15 @@ void FractureCoupling<dim>::prepare(const ParticleStore<dim> &store)
   // Every rank searches to the radius of all the particles.
   if (ranks)
     h_largest = ranks->max(h_largest);
-  radius      = 0;
-  seeded_rows = true;
+  radius         = 0;
+  seeded_rows    = true;
+  measures_bands = false;
   thresholds.fill(std::numeric_limits<double>::infinity());
   for (const auto &f : models)
     if (f)
     {
       radius                  = std::max(radius, f->search_radius(h_largest));
+      measures_bands          = measures_bands || f->reads_crack_strains();
       const FractureTrigger t = f->trigger(h_largest);
       if (t.field == FractureTrigger::Field::none)
         seeded_rows = false;
@@ -172,7 +174,7 @@ void FractureCoupling<dim>::prepare(const ParticleStore<dim> &store)
   fields.max_principal_stress.resize(n);
   fields.energy_density.resize(n);
   fields.crack_opening.resize(n);
-  fields.crack_strain.resize(n);
+  fields.crack_strain.resize(measures_bands ? n : 0);
   seeds.resize(n);
   prepared_size    = n;
   prepared_version = store.order_version();
@@ -190,20 +192,26 @@ void FractureCoupling<dim>::take_snapshot(const ParticleStore<dim> &store,
   for (std::size_t p = begin; p < end; ++p)
   {
     const bool alive = !store.failed[p];
-    const double s   = alive ? eigenvalues(store.stress[p])[0] : 0.0;
+    const double s   = alive ? max_principal(store.stress[p]) : 0.0;
     const double w =
         alive ? 0.5 * (1 - store.damage[p]) * (store.stress[p] * store.strain[p]) : 0.0;
     fields.max_principal_stress[p] = s;
     fields.energy_density[p]       = w;
     fields.crack_opening[p]        = store.crack_opening[p];
-    // Only softening and failed particles have one (a principal strain each).
-    const double chi = store.failed[p] ? 1.0 : store.damage[p];
-    fields.crack_strain[p] =
-        chi > 0 ? chi * std::max(0.0, eigenvalues(store.strain[p])[0]) : 0.0;
+    // Only softening and failed particles have one (a principal strain each), and only
+    // a model that measures its band reads them.
+    if (measures_bands)
+    {
+      const double chi = store.failed[p] ? 1.0 : store.damage[p];
+      fields.crack_strain[p] =
+          chi > 0 ? chi * std::max(0.0, max_principal(store.strain[p])) : 0.0;
+    }
     // Only alive particles of a material with a model read their row; a softening
-    // particle reads it every step where its band shares their openings.
-    const bool reads     = alive && models[store.material_id[p]] != nullptr;
-    const bool softening = alive && store.onset_strain[p] != 0;
+    // particle reads it every step where its band shares their openings or is
+    // measured from them.
+    const bool reads = alive && models[store.material_id[p]] != nullptr;
+    const bool softening =
+        (shares_openings || measures_bands) && alive && store.onset_strain[p] != 0;
     seeds[p] =
         (s > stress_bound || w > energy_bound || softening ? Neighbourhood<dim>::seed
                                                            : 0) |

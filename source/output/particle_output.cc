@@ -10,19 +10,13 @@ namespace lme_mpm
 {
 namespace
 {
-/// The largest principal value for output: a closed form without cancellation in 2D
-/// (deal.II's tr^2 - 4 det can round below zero for a nearly isotropic tensor with a
-/// tiny shear), and NaN for a state that is not finite (a run that went unstable still
-/// writes its last state).
+/// The largest principal value for output, NaN for a state that is not finite (a run
+/// that went unstable still writes its last state).
 template <int dim>
 double largest_principal(const SymmetricTensor<2, dim> &s)
 {
-  if (!std::isfinite(s.norm()))
-    return std::numeric_limits<double>::quiet_NaN();
-  if constexpr (dim == 2)
-    return 0.5 * (s[0][0] + s[1][1]) + std::hypot(0.5 * (s[0][0] - s[1][1]), s[0][1]);
-  else
-    return max_principal(s);
+  return std::isfinite(s.norm()) ? max_principal(s)
+                                 : std::numeric_limits<double>::quiet_NaN();
 }
 } // namespace
 

@@ -130,6 +130,9 @@ private:
   /// A body's crack band reaches beyond its own cell: softening particles then read
   /// their rows every step (the band shares its opening).
   bool shares_openings = false;
+  /// A model measures its band from the neighbours' crack strains (the snapshot then
+  /// holds them).
+  bool measures_bands = false;
   /// Threshold per field (FractureTrigger::Field), the lowest of the models'.
   std::array<double, 3> thresholds{};
   std::vector<std::uint8_t> seeds; ///< particles above a threshold

@@ -111,6 +111,9 @@ public:
   virtual FractureTrigger trigger(double /*h_largest*/) const { return {}; }
   /// Counters for summary.json.
   virtual std::vector<std::pair<std::string, double>> statistics() const { return {}; }
+  /// True if update() reads FractureFields::crack_strain (the coupling computes it
+  /// only then).
+  virtual bool reads_crack_strains() const { return false; }
 };
 
 template <int dim>
