@@ -5,6 +5,13 @@ per cell on energy drift and error. Writes stability.csv and prints a summary.
 
     /usr/bin/python3 benchmarks/stability_study.py --build build --out output/stability
     /usr/bin/python3 benchmarks/stability_study.py --studies amplitude   # one study
+    /usr/bin/python3 benchmarks/stability_study.py --studies speed --threads 2
+
+The speed study (doc/stability.md, "Particle speed") runs the vibrating bar on 160
+cells for three periods at a peak particle speed v0/c = 0.1 with the CFL number, the
+particle travel limit and the particle update varied, and at v0/c from 1e-3 to 0.03
+with CFL 0.3, and writes stability_speed.csv and, with --plot,
+doc/figures/stability_speed.png (about 16 minutes on two threads).
 
 A run counts as stable when it completes (no guard fired) with total energy within
 10 % of its initial value.
@@ -16,10 +23,10 @@ import os
 import subprocess
 
 
-def run(binary, scene, out, settings):
-    cmd = [binary, scene, "--threads", "1", "--set", "Output/Directory=" + out,
+def run(binary, scene, out, settings, threads=1):
+    cmd = [binary, scene, "--threads", str(threads), "--set", "Output/Directory=" + out,
            "--set", "Output/Write particle files=false", "--set", "Output/Verbosity=0",
-           "--set", "Time/Maximum CFL=2"]
+           "--set", "Time/Maximum CFL=2", "--set", "Time/Particle travel per step=0"]
     for s in settings:
         cmd += ["--set", s]
     subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -36,7 +43,12 @@ def main():
     p.add_argument("--out", default="output/stability")
     p.add_argument("--studies", nargs="+",
                    default=["cfl", "newmark_gamma", "lme_gamma", "particles_per_cell", "amplitude"])
+    p.add_argument("--threads", type=int, default=1)
+    p.add_argument("--plot", action="store_true", help="draw the speed study's figure")
     a = p.parse_args()
+    if "speed" in a.studies:
+        speed_study(a)
+        return
     binary = os.path.join(a.build, "lme-mpm")
     os.makedirs(a.out, exist_ok=True)
     rows = []
@@ -95,6 +107,101 @@ def main():
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         w.writeheader()
         w.writerows(rows)
+
+
+def energy_extremes(out):
+    """Largest and last total energy over the initial one, from history.csv."""
+    with open(os.path.join(out, "history.csv")) as f:
+        rows = list(csv.DictReader(f))
+    e = [float(r["total_energy"]) for r in rows]
+    return max(e) / e[0], e[-1] / e[0]
+
+
+def speed_study(a):
+    """Energy of the vibrating bar against particle speed, CFL, travel limit and update."""
+    binary = os.path.join(a.build, "lme-mpm")
+    os.makedirs(a.out, exist_ok=True)
+    c, beta = 316.22776601683796, "1.5707963267948966"
+    three_periods = 3 * 0.012649110640673518
+    # At v0/c = 0.1 every shape function with FLIP at three CFL numbers (no travel
+    # limit), XPIC(2) at CFL 0.3, and the travel limit 0.01 at CFL 0.3; below 0.1 the
+    # speed axis at CFL 0.3 with FLIP.
+    cases = []
+    for shape in ["linear", "ugimp", "bspline", "lme"]:
+        cfls = [0.3, 0.1] if shape == "lme" else [0.3, 0.1, 0.03]
+        cases += [(shape, 0.1, cfl, "flip", 0) for cfl in cfls]
+        cases += [(shape, 0.1, 0.3, "xpic", 0), (shape, 0.1, 0.3, "flip", 0.01)]
+    for shape in ["linear", "bspline"]:
+        cases += [(shape, vc, 0.3, "flip", 0) for vc in [1e-3, 1e-2, 3e-2]]
+    rows = []
+    for shape, vc, cfl, update, travel in cases:
+        out = os.path.join(a.out, "run")
+        if os.path.exists(os.path.join(out, "summary.json")):
+            os.remove(os.path.join(out, "summary.json"))
+        settings = ["Shape functions/Type=" + shape, "Grid/Cell size=0.00625",
+                    "Time/End time=%.17g" % three_periods, "Time/CFL=%g" % cfl,
+                    "Time/Particle update=" + update,
+                    "Time/Particle travel per step=%g" % travel,
+                    "Verification/Compare with exact solution=false",
+                    "Body 1/Initial velocity/Function constants=v0=%.12g, beta=%s" % (vc * c, beta)]
+        s = run(binary, "prm/vibrating_bar.prm", out, settings, a.threads)
+        row = {"shape": shape, "v_over_c": vc, "cfl": cfl, "update": update,
+               "travel_limit": travel, "status": s.get("status"),
+               "steps": s.get("steps", ""),
+               "largest_travel_per_step": min(cfl * vc, travel) if travel > 0 else cfl * vc,
+               "max_energy_drift": s.get("max_energy_drift", ""),
+               "wall_seconds": s.get("wall_seconds", "")}
+        try:
+            row["max_total_over_initial"], row["final_total_over_initial"] = energy_extremes(out)
+        except (OSError, KeyError, ValueError, ZeroDivisionError):
+            row["max_total_over_initial"] = row["final_total_over_initial"] = ""
+        rows.append(row)
+        print(row, flush=True)
+    with open(os.path.join(a.out, "stability_speed.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        w.writerows(rows)
+    if a.plot:
+        plot_speed(rows, "doc/figures/stability_speed.png")
+
+
+def plot_speed(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for shape, colour in [("linear", "C0"), ("ugimp", "C3"), ("bspline", "C1"), ("lme", "C2")]:
+        flip = sorted((r["largest_travel_per_step"], r["max_energy_drift"]) for r in rows
+                      if r["shape"] == shape and r["update"] == "flip" and r["travel_limit"] == 0
+                      and r["v_over_c"] == 0.1 and r["max_energy_drift"] != "")
+        if flip:
+            axes[0].loglog([x for x, _ in flip], [max(y, 1e-6) for _, y in flip], "o-",
+                           color=colour, label=shape + " (FLIP)")
+        for update, marker in [("xpic", "s"), ("flip", "^")]:
+            pts = [r for r in rows if r["shape"] == shape and r["v_over_c"] == 0.1 and r["cfl"] == 0.3
+                   and r["update"] == update and (update == "xpic" or r["travel_limit"] > 0)]
+            for r in pts:
+                axes[0].loglog([r["largest_travel_per_step"]], [max(r["max_energy_drift"], 1e-6)],
+                               marker, color=colour, mfc="none", ms=9)
+        speed = sorted((r["v_over_c"], r["max_energy_drift"]) for r in rows
+                       if r["shape"] == shape and r["update"] == "flip" and r["travel_limit"] == 0
+                       and r["cfl"] == 0.3 and r["max_energy_drift"] != "")
+        if len(speed) > 1:
+            axes[1].loglog([x for x, _ in speed], [max(y, 1e-6) for _, y in speed], "o-",
+                           color=colour, label=shape)
+    axes[0].axhline(0.01, color="grey", ls=":")
+    axes[1].axhline(0.01, color="grey", ls=":")
+    axes[0].set_xlabel("largest particle travel per step / h")
+    axes[0].set_ylabel("largest energy drift")
+    axes[0].set_title("v0/c = 0.1 (squares: XPIC(2), triangles: travel limit 0.01)")
+    axes[1].set_xlabel("peak particle speed v0 / c")
+    axes[1].set_ylabel("largest energy drift")
+    axes[1].set_title("CFL 0.3, FLIP")
+    for ax in axes:
+        ax.legend(fontsize=8)
+        ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
 
 
 if __name__ == "__main__":

@@ -5,6 +5,8 @@
 #include <boost/program_options.hpp>
 
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/base/interrupt.h>
+#include <lme_mpm/base/run_record.h>
 #include <lme_mpm/simulation/run.h>
 #include <lme_mpm/simulation/run_guard.h>
 
@@ -59,9 +61,11 @@ int main(int argc, char **argv)
         "threads,t", po::value<unsigned int>(), "worker threads (default: all cores)")(
         "resume", po::value<std::string>(),
         "continue the run whose checkpoint.bin is in this directory (give the same "
-        "parameter file and --set values)")("print-parameters",
-                                            "write the documented default parameter "
-                                            "file to standard output");
+        "parameter file and --set values)")(
+        "print-parameters",
+        "write the documented parameter file to standard output: the defaults, or with "
+        "FILE (and --set) every entry of that run with the values it would read")(
+        "version", "print the version and the git revision of the build");
     po::options_description hidden;
     hidden.add_options()("file", po::value<std::string>(), "parameter file");
     po::options_description all;
@@ -87,9 +91,20 @@ int main(int argc, char **argv)
       std::cout << options << std::endl;
       return 0;
     }
+    if (vm.count("version"))
+    {
+      std::cout << lme_mpm::version_line() << std::endl;
+      return 0;
+    }
+    const std::vector<std::string> overrides =
+        vm.count("set") ? vm["set"].as<std::vector<std::string>>()
+                        : std::vector<std::string>();
     if (vm.count("print-parameters"))
     {
-      lme_mpm::print_default_parameters(std::cout);
+      if (vm.count("file"))
+        lme_mpm::print_parameters(vm["file"].as<std::string>(), overrides, std::cout);
+      else
+        lme_mpm::print_default_parameters(std::cout);
       return 0;
     }
     if (!vm.count("file"))
@@ -111,14 +126,23 @@ int main(int argc, char **argv)
       }
       dealii::MultithreadInfo::set_thread_limit(n);
     }
-    const std::vector<std::string> overrides =
-        vm.count("set") ? vm["set"].as<std::vector<std::string>>()
-                        : std::vector<std::string>();
+    std::string command_line;
+    for (int i = 0; i < argc; ++i)
+      command_line += (i ? " " : "") + std::string(argv[i]);
+    lme_mpm::set_command_line(command_line);
+    lme_mpm::interrupt::install();
     try
     {
       lme_mpm::run_parameter_file(vm["file"].as<std::string>(), overrides, std::cout,
                                   vm.count("resume") ? vm["resume"].as<std::string>()
                                                      : "");
+    }
+    catch (const lme_mpm::ExcRunInterrupted &e)
+    {
+      // The shell's convention for a process ended by a signal: 128 + its number.
+      if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+        std::cerr << "lme-mpm: " << lme_mpm::input::concise_message(e) << std::endl;
+      return 128 + lme_mpm::interrupt::received();
     }
     catch (const lme_mpm::ExcRunFailed &e)
     {

@@ -41,6 +41,13 @@ void RunSummary::write(const std::string &file, const std::string &shape_functio
   if (!non_finite.empty())
     json["message"] = message + (message.empty() ? "" : " ") +
                       "(not finite, written as null: " + non_finite + ")";
+  json["run"] = {{"version", version()},
+                 {"git_revision", git_revision()},
+                 {"command_line", record.command_line},
+                 {"parameter_file", record.parameter_file},
+                 {"overrides", record.overrides},
+                 {"libraries", record.libraries},
+                 {"resumed_from", record.resumed_from}};
   std::ofstream(file) << json.dump(2) << '\n';
 }
 

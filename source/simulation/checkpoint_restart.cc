@@ -17,19 +17,20 @@ void Simulation<dim>::serialize(Archive &ar)
   // are rebuilt every step. A distributed run writes one file per rank, each with
   // that rank's particles (owned and ghosts) and its copy of the rest: it resumes on
   // as many ranks, which p4est splits alike.
-  std::uint32_t file_dim = dim, file_steps = n_steps, file_ranks = parts.ranks.n_ranks();
-  std::uint64_t n = n_particles;
-  double file_dt  = dt;
+  std::uint32_t file_dim = dim, file_steps = clock.planned_steps(),
+                file_ranks = parts.ranks.n_ranks();
+  std::uint64_t n          = n_particles;
+  double file_dt           = clock.wave_step();
   ar(file_dim, file_ranks, n, file_dt, file_steps);
   if (ar.loading())
   {
     std::ostringstream mismatch;
     mismatch << "the checkpoint holds a " << file_dim << "D run of " << n
              << " particles with dt = " << file_dt << " s; this parameter file gives "
-             << dim << "D, " << n_particles << " particles, dt = " << dt
+             << dim << "D, " << n_particles << " particles, dt = " << clock.wave_step()
              << " s: resume with the parameter file (and --set "
              << "values) of the run that wrote it";
-    AssertThrow(file_dim == dim && n == n_particles && file_dt == dt,
+    AssertThrow(file_dim == dim && n == n_particles && file_dt == clock.wave_step(),
                 ExcBadInput("--resume", mismatch.str()));
     AssertThrow(file_ranks == parts.ranks.n_ranks(),
                 ExcBadInput("--resume", "the checkpoint was written on " +
@@ -39,6 +40,8 @@ void Simulation<dim>::serialize(Archive &ar)
   }
   ar(t, step_count);
   parts.transfer.serialize(ar);
+  ar(max_speed);
+  clock.serialize(ar);
   output.serialize(ar);
   parts.constraints.serialize(ar);
   parts.contact.serialize(ar);
@@ -118,7 +121,7 @@ void Simulation<dim>::resume_from(const std::string &directory)
                 ExcBadInput("--resume", "no checkpoint '" + file + "' on every rank"));
   checkpoint::read(file, [&](Archive &ar) { serialize(ar); });
   parts.particles.mark_reordered();
-  AssertThrow(step_count <= n_steps,
+  AssertThrow(t <= clock.end_time() * (1 + 1e-12),
               ExcBadInput("--resume", "the checkpoint is past this run's end time"));
   resumed = true;
   stepper.mark_initialised();

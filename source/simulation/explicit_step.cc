@@ -46,6 +46,17 @@ StepResult ExplicitStep<dim>::advance(const double t, const unsigned int step)
 }
 
 template <int dim>
+double ExplicitStep<dim>::fastest_particle() const
+{
+  const ParticleStore<dim> &particles = parts.particles;
+  double v2                           = 0;
+  for (std::size_t p = 0; p < particles.size(); ++p)
+    if (!particles.ghost[p])
+      v2 = std::max(v2, particles.velocity[p].norm_square());
+  return parts.ranks.max(std::sqrt(v2));
+}
+
+template <int dim>
 void ExplicitStep<dim>::exchange_particles()
 {
   if (!parts.ranks.distributed())
@@ -277,10 +288,15 @@ StepResult ExplicitStep<dim>::update_particles(const double t, const Corrected &
                   corrected.mass_times_acceleration, nodes.rate, dt);
   StepResult result;
   result.first_bad = parts.particles.size();
+  if (parts.parameters.xpic_order > 0)
+    parts.transfer.extend_start_velocity(parts.parameters.xpic_order, min_mass,
+                                         [&](std::vector<Tensor<1, dim>> &x)
+                                         { impose_rates(x, t); });
   // Under a ramp, the body force of the middle of the step does its work.
   const double body_work = parts.transfer.grid_to_particles(
       newmark, dt, parts.parameters.body_force_at(t + 0.5 * dt),
-      0.5 * parts.grid.min_spacing(), result.first_bad);
+      0.5 * parts.grid.min_spacing(), result.first_bad, result.max_speed);
+  result.max_speed = parts.ranks.max(result.max_speed);
   // The constraints' work is summed over the ranks already.
   result.external_work = work + parts.ranks.sum(body_work + corrected.contact_work);
   return result;

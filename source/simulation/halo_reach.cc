@@ -12,11 +12,12 @@ template <int dim>
 HaloReach
 halo_reach(const BackgroundGrid<dim> &grid, const ShapeFunction<dim> &shape_function,
            const FractureCoupling<dim> &fracture, const BodyContact<dim> &contact,
-           const unsigned int mc)
+           const unsigned int mc, const unsigned int xpic)
 {
   HaloReach reach;
-  // In support radii; contact.reach() counts them too.
-  const double supports = 4 + 4 * mc + (mc > 0 ? 1 : 0) + contact.reach(1.0);
+  // In support radii; contact.reach() counts them too. XPIC(m) adds m - 1
+  // consistent-mass products and an interpolation.
+  const double supports = 4 + 4 * mc + (mc > 0 ? 1 : 0) + 2 * xpic + contact.reach(1.0);
   reach.support_passes  = static_cast<unsigned int>(std::ceil(supports / 2 - 1e-9));
 
   reach.node_radius.resize(grid.n_nodes());
@@ -61,12 +62,10 @@ halo_reach(const BackgroundGrid<dim> &grid, const ShapeFunction<dim> &shape_func
   return reach;
 }
 
-template HaloReach halo_reach(const BackgroundGrid<2> &,
-                                            const ShapeFunction<2> &,
-                                            const FractureCoupling<2> &,
-                                            const BodyContact<2> &, unsigned int);
-template HaloReach halo_reach(const BackgroundGrid<3> &,
-                                            const ShapeFunction<3> &,
-                                            const FractureCoupling<3> &,
-                                            const BodyContact<3> &, unsigned int);
+template HaloReach halo_reach(const BackgroundGrid<2> &, const ShapeFunction<2> &,
+                              const FractureCoupling<2> &, const BodyContact<2> &,
+                              unsigned int, unsigned int);
+template HaloReach halo_reach(const BackgroundGrid<3> &, const ShapeFunction<3> &,
+                              const FractureCoupling<3> &, const BodyContact<3> &,
+                              unsigned int, unsigned int);
 } // namespace lme_mpm

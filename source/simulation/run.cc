@@ -4,6 +4,7 @@
 #include <lme_mpm/simulation/simulation.h>
 
 #include <filesystem>
+#include <sstream>
 
 namespace lme_mpm
 {
@@ -45,12 +46,39 @@ void apply_overrides(ParameterHandler &prm, const std::vector<std::string> &over
 
 namespace
 {
-template <int dim>
-std::map<std::string, double>
-run_dim(const std::string &file, const std::vector<std::string> &overrides,
-        const ParameterCounts &counts, std::ostream &console, const std::string &resume)
+std::string &command_line()
 {
+  static std::string line;
+  return line;
+}
+
+/// The first pass over a file: the plug-in libraries (loaded) and the counts.
+ParameterCounts first_pass(const std::string &file,
+                           const std::vector<std::string> &overrides,
+                           std::vector<std::string> *libraries = nullptr)
+{
+  AssertThrow(std::filesystem::exists(file),
+              ExcBadInput("parameter file", "'" + file + "' does not exist"));
+  // The plug-in libraries to load (their names must be known before the selection
+  // entries are declared) and how many materials, bodies, ... the file declares.
+  ParameterCounts counts;
   ParameterHandler prm;
+  ParameterCounts::declare_parameters(prm);
+  PluginLibraries::declare_parameters(prm);
+  prm.parse_input(file, "", true, false);
+  apply_overrides(prm, overrides, true);
+  const auto paths = PluginLibraries::parse_parameters(prm);
+  PluginLibraries::load(paths);
+  if (libraries)
+    *libraries = paths;
+  counts.parse_parameters(prm);
+  return counts;
+}
+
+template <int dim>
+void read_file(ParameterHandler &prm, const std::string &file,
+               const std::vector<std::string> &overrides, const ParameterCounts &counts)
+{
   Simulation<dim>::declare_parameters(prm, counts);
   try
   {
@@ -83,35 +111,58 @@ run_dim(const std::string &file, const std::vector<std::string> &overrides,
                                               "', beyond the number this entry gives"));
   }
   apply_overrides(prm, overrides, false);
+}
+
+template <int dim>
+std::map<std::string, double>
+run_dim(const std::string &file, const std::vector<std::string> &overrides,
+        const ParameterCounts &counts, std::ostream &console, const std::string &resume,
+        RunRecord record)
+{
+  ParameterHandler prm;
+  read_file<dim>(prm, file, overrides, counts);
   Simulation<dim> simulation(prm, counts, console);
+  // After the constructor, which wrote the scene's entries into the handler.
+  std::ostringstream parameters;
+  prm.print_parameters(parameters, ParameterHandler::PRM);
+  record.parameters = parameters.str();
+  simulation.keep_record(std::move(record));
   if (!resume.empty())
     simulation.resume_from(resume);
   return simulation.run();
 }
 } // namespace
 
+void set_command_line(const std::string &line)
+{
+  command_line() = line;
+}
+
+void print_parameters(const std::string &file, const std::vector<std::string> &overrides,
+                      std::ostream &out)
+{
+  const ParameterCounts counts = first_pass(file, overrides);
+  ParameterHandler prm;
+  if (counts.dim == 2)
+    read_file<2>(prm, file, overrides, counts);
+  else
+    read_file<3>(prm, file, overrides, counts);
+  prm.print_parameters(out, ParameterHandler::PRM);
+}
+
 std::map<std::string, double>
 run_parameter_file(const std::string &file, const std::vector<std::string> &overrides,
                    std::ostream &console, const std::string &resume)
 {
-  AssertThrow(std::filesystem::exists(file),
-              ExcBadInput("parameter file", "'" + file + "' does not exist"));
-  // First pass: the plug-in libraries to load (their names must be known before the
-  // selection entries are declared) and how many materials, bodies, ... the file
-  // declares.
-  ParameterCounts counts;
-  {
-    ParameterHandler prm;
-    ParameterCounts::declare_parameters(prm);
-    PluginLibraries::declare_parameters(prm);
-    prm.parse_input(file, "", true, false);
-    apply_overrides(prm, overrides, true);
-    PluginLibraries::load(PluginLibraries::parse_parameters(prm));
-    counts.parse_parameters(prm);
-  }
+  RunRecord record;
+  record.command_line          = command_line();
+  record.parameter_file        = file;
+  record.overrides             = overrides;
+  record.resumed_from          = resume;
+  const ParameterCounts counts = first_pass(file, overrides, &record.libraries);
   if (counts.dim == 2)
-    return run_dim<2>(file, overrides, counts, console, resume);
-  return run_dim<3>(file, overrides, counts, console, resume);
+    return run_dim<2>(file, overrides, counts, console, resume, std::move(record));
+  return run_dim<3>(file, overrides, counts, console, resume, std::move(record));
 }
 
 void print_default_parameters(std::ostream &out)

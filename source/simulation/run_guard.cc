@@ -1,8 +1,10 @@
 #include <lme_mpm/base/format.h>
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/base/interrupt.h>
 #include <lme_mpm/simulation/run_guard.h>
 
 #include <cmath>
+#include <sstream>
 
 namespace lme_mpm
 {
@@ -35,6 +37,29 @@ void RunGuard<dim>::stop_if_unstable(const std::size_t p, const unsigned int ste
                 return "the particle moved more than half a cell in one step (the run "
                        "is unstable or the time step too large: lower the CFL number)";
               });
+}
+
+template <int dim>
+void RunGuard<dim>::stop_if_energy_runs_away(const double drift, const unsigned int step,
+                                             const double t) const
+{
+  const double d = ranks.max(drift);
+  if (!(d > 0.5))
+    return;
+  std::ostringstream msg;
+  msg << "Run stopped at step " << step << ", time " << t
+      << ": the total energy has drifted by " << d
+      << " of the run's energy scale (kinetic + strain + dissipated energy and "
+         "external work), more than half: the run is unstable (lower the CFL number)";
+  AssertThrow(false, ExcRunStopped(msg.str()));
+}
+
+template <int dim>
+void RunGuard<dim>::stop_if_interrupted(const unsigned int step, const double t) const
+{
+  const int signal = static_cast<int>(ranks.max(interrupt::received()));
+  if (signal != 0)
+    AssertThrow(false, ExcInterrupted(interrupt::name(signal), step, t));
 }
 
 template <int dim>

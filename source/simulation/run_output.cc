@@ -1,6 +1,8 @@
 #include <lme_mpm/base/format.h>
 #include <lme_mpm/simulation/run_output.h>
 
+#include <fstream>
+
 #include <filesystem>
 #include <iomanip>
 #include <numeric>
@@ -138,8 +140,7 @@ SceneState<dim> RunOutput<dim>::scene_state(const double t,
 }
 
 template <int dim>
-void RunOutput<dim>::prepare(const bool resumed, const double dt,
-                             const unsigned int n_steps)
+void RunOutput<dim>::prepare(const bool resumed, const TimeStepControl &clock)
 {
   const RunParameters<dim> &run = parts.parameters;
   exact.compute_norms(observed(), run.end_time, run.output_interval);
@@ -150,6 +151,8 @@ void RunOutput<dim>::prepare(const bool resumed, const double dt,
   parts.ranks.barrier();
   if (!writes_files())
     return;
+  if (!record.parameters.empty())
+    std::ofstream(output_directory + "/parameters.prm") << record.parameters;
   if (resumed)
     history.resume(output_directory, resumed_history_size);
   else
@@ -162,8 +165,10 @@ void RunOutput<dim>::prepare(const bool resumed, const double dt,
   }
   pcout << "lme-mpm: " << dim << "D, " << n_particles << " particles, "
         << parts.grid.n_nodes() << " nodes, shape functions '"
-        << parts.shape_function->name() << "', dt = " << dt << " s, " << n_steps
-        << " steps, " << parts.transfer.threads() << " thread(s)" << std::endl;
+        << parts.shape_function->name() << "', dt = " << clock.wave_step() << " s, "
+        << clock.planned_steps() << " steps"
+        << (run.particle_travel > 0 ? " (more while particles travel fast)" : "") << ", "
+        << parts.transfer.threads() << " thread(s)" << std::endl;
 }
 
 template <int dim>
@@ -269,20 +274,24 @@ std::map<std::string, double> RunOutput<dim>::energies() const
 
 template <int dim>
 RunSummary RunOutput<dim>::summarise(const double wall, const unsigned int steps,
-                                     const double dt, const double t)
+                                     const TimeStepControl &clock, const double t)
 {
   // Every rank takes part in the gathering; rank 0 summarises.
   const ParticleStore<dim> &all = observed();
   RunSummary summary;
   if (!writes_files())
     return summary;
+  summary.record                       = record;
+  summary.record.parameters            = "";
   results["wall_seconds"]              = wall;
   results["steps"]                     = steps;
   results["particles"]                 = n_particles;
   results["ranks"]                     = parts.ranks.n_ranks();
   results["nodes"]                     = parts.grid.n_nodes();
   results["threads"]                   = parts.transfer.threads();
-  results["time_step"]                 = dt;
+  results["time_step"]                 = clock.wave_step();
+  results["smallest_time_step"]        = clock.smallest_step();
+  results["travel_limited_steps"]      = clock.limited_steps();
   results["particle_steps_per_second"] = n_particles * double(steps) / wall;
   results["max_energy_drift"]          = energy.max_drift();
   stages.add_results(results);
@@ -313,16 +322,17 @@ RunSummary RunOutput<dim>::summarise(const double wall, const unsigned int steps
 
 template <int dim>
 void RunOutput<dim>::report_progress(const std::chrono::steady_clock::time_point start,
-                                     const unsigned int step, const unsigned int n_steps,
+                                     const unsigned int step, const double done,
                                      const double t)
 {
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   pcout << "  step " << std::setw(8) << step << "  t = " << std::setw(12)
-        << std::setprecision(5) << t << "  " << std::setw(3) << 100 * step / n_steps
-        << "%  " << std::setprecision(3) << n_particles * step / elapsed
-        << " particle-steps/s  ETA " << std::setprecision(3)
-        << elapsed * (n_steps - step) / step << " s" << std::endl;
+        << std::setprecision(5) << t << "  " << std::setw(3)
+        << static_cast<int>(100 * done + 1e-9) << "%  " << std::setprecision(3)
+        << n_particles * step / elapsed << " particle-steps/s  ETA "
+        << std::setprecision(3) << elapsed * (1 - done) / std::max(done, 1e-12) << " s"
+        << std::endl;
 }
 
 template <int dim>

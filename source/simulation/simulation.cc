@@ -47,8 +47,9 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
                                   parts.parameters.thickness);
   const TimeStepping ts = stable_time_step(parts.parameters, parts.grid.min_spacing(),
                                            parts.materials.max_wave_speed());
-  dt                    = ts.dt;
-  n_steps               = ts.n_steps;
+  clock.set_up(ts, parts.parameters.end_time, parts.parameters.particle_travel,
+               parts.grid.min_spacing());
+  dt = ts.dt;
   setup_particles(prm, counts);
   setup_shape_functions(prm);
   setup_bodies_and_contact(prm, counts);
@@ -60,6 +61,7 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
     min_mass = std::min(min_mass, m);
   stepper.set_up(dt, 1e-12 * min_mass, crack_reach, particle_spacing);
   distribute();
+  max_speed = stepper.fastest_particle();
 }
 
 template <int dim>
@@ -112,9 +114,9 @@ void Simulation<dim>::setup_particles(ParameterHandler &prm,
 template <int dim>
 void Simulation<dim>::check_initial_motion(const std::vector<std::string> &sections) const
 {
-  // The time step comes from the wave speed; the motion the input starts must not
-  // carry a particle half a cell in one step either (the run guard would stop it at
-  // step 1 and blame the CFL number).
+  // The time step comes from the wave speed (and the travel limit, if on); the
+  // motion the input starts must not carry a particle half a cell in one step either
+  // (the run guard would stop it at step 1 and blame the CFL number).
   const ParticleStore<dim> &store = parts.particles;
   const double h_min              = parts.grid.min_spacing();
   std::size_t fastest             = 0;
@@ -123,12 +125,14 @@ void Simulation<dim>::check_initial_motion(const std::vector<std::string> &secti
       fastest = p;
   if (store.size() > 0)
   {
-    const double v = store.velocity[fastest].norm();
+    const double v  = store.velocity[fastest].norm();
+    const double dt = clock.allowed(v);
     std::ostringstream msg;
     msg << "the initial speed " << v << " m/s at "
         << point_to_string(store.position[fastest]) << " carries a particle " << v * dt
         << " m in one step of dt = " << dt << " s, more than half the smallest cell ("
-        << 0.5 * h_min << " m): lower the speed or Time/CFL";
+        << 0.5 * h_min
+        << " m): lower the speed or Time/CFL, or set Time/Particle travel per step";
     AssertThrow(
         v * dt <= 0.5 * h_min,
         ExcBadInput(sections[store.body_id[fastest]] + "/Initial velocity", msg.str()));
@@ -208,8 +212,9 @@ void Simulation<dim>::distribute()
   if (!parts.ranks.distributed())
     return;
   // The halo holds what one step of an owned particle reads (halo_reach.h).
-  const HaloReach reach = halo_reach(parts.grid, *parts.shape_function, parts.fracture,
-                                     parts.contact, parts.parameters.mass_corrections);
+  const HaloReach reach =
+      halo_reach(parts.grid, *parts.shape_function, parts.fracture, parts.contact,
+                 parts.parameters.mass_corrections, parts.parameters.xpic_order);
   parts.ranks.partition(parts.grid, reach);
   parts.ranks.distribute(parts.particles);
   output.console() << "lme-mpm: " << parts.ranks.n_ranks() << " MPI ranks; "
@@ -225,9 +230,12 @@ void Simulation<dim>::distribute()
 template <int dim>
 void Simulation<dim>::step()
 {
+  dt = clock.next(t, max_speed);
+  stepper.set_time_step(dt);
   const StepResult result = stepper.advance(t, step_count);
   t += dt;
   ++step_count;
+  max_speed = result.max_speed;
   output.after_step(result.external_work, dt);
   guard.stop_if_unstable(result.first_bad, step_count, t);
   stepper.exchange_particles();
@@ -243,30 +251,35 @@ void Simulation<dim>::advance_to_end(TimerOutput &timer,
     output.write_first_row(t);
   }
   auto last_checkpoint            = std::chrono::steady_clock::now();
-  const unsigned int report_every = std::max(1u, n_steps / 10);
-  while (step_count < n_steps)
+  const unsigned int report_every = std::max(1u, clock.planned_steps() / 10);
+  while (!clock.finished(t, step_count))
   {
     {
       TimerOutput::Scope scope(timer, "time step");
       step();
     }
-    if (output.due(t, dt) || step_count == n_steps)
+    if (output.due(t, dt) || clock.finished(t, step_count))
     {
       TimerOutput::Scope scope(timer, "output");
       output.write_due_row(step_count, t, dt);
+      // Where the travel limit has shortened steps, a blow-up no longer moves a
+      // particle half a cell in a step: the energy tells it.
+      if (clock.limited_steps() > 0)
+        guard.stop_if_energy_runs_away(output.energy_drift(), step_count, t);
       if (!output.scene_finished(t).empty())
         break;
     }
-    if (checkpoint_due(last_checkpoint) && step_count < n_steps)
+    if (checkpoint_due(last_checkpoint) && !clock.finished(t, step_count))
     {
       TimerOutput::Scope scope(timer, "checkpoint");
       write_checkpoint();
       last_checkpoint = std::chrono::steady_clock::now();
     }
-    if (step_count % report_every == 0 || step_count == n_steps)
-      output.report_progress(start, step_count, n_steps, t);
+    if (step_count % report_every == 0 || clock.finished(t, step_count))
+      output.report_progress(start, step_count, t / clock.end_time(), t);
+    guard.stop_if_interrupted(step_count, t);
     const unsigned int max_steps = parts.parameters.max_steps;
-    if (max_steps > 0 && step_count >= max_steps && step_count < n_steps)
+    if (max_steps > 0 && step_count >= max_steps && !clock.finished(t, step_count))
       AssertThrow(false, ExcStepLimit(step_count, t));
   }
 }
@@ -279,7 +292,8 @@ std::string Simulation<dim>::end_failed_run(const std::exception &e)
   // (main.cc); writing output here would hang.
   const bool on_all_ranks = dynamic_cast<const ExcRunAborted *>(&e) != nullptr ||
                             dynamic_cast<const ExcRunStopped *>(&e) != nullptr ||
-                            dynamic_cast<const ExcStepLimit *>(&e) != nullptr;
+                            dynamic_cast<const ExcStepLimit *>(&e) != nullptr ||
+                            dynamic_cast<const ExcInterrupted *>(&e) != nullptr;
   if (parts.ranks.distributed() && !on_all_ranks)
     throw;
   std::string message = input::concise_message(e);
@@ -306,11 +320,28 @@ std::map<std::string, double> Simulation<dim>::run()
 {
   TimerOutput timer(output.console(), TimerOutput::never, TimerOutput::wall_times);
   const auto start = std::chrono::steady_clock::now();
-  output.prepare(resumed, dt, n_steps);
+  output.prepare(resumed, clock);
   std::string status = "completed", message;
   try
   {
     advance_to_end(timer, start);
+  }
+  catch (const ExcInterrupted &e)
+  {
+    // The step is complete: keep its row and, where checkpoints are on, a checkpoint
+    // of it to go on from.
+    status  = "interrupted";
+    message = end_failed_run(e);
+    if (parts.parameters.checkpoint_every_steps > 0 ||
+        parts.parameters.checkpoint_every_seconds > 0)
+    {
+      write_checkpoint();
+      message += "; checkpoint written: continue with --resume " + output.directory() +
+                 " (and the same parameter file and --set values)";
+    }
+    else
+      message += "; no checkpoint (Checkpoint/Every steps and Every seconds are 0): "
+                 "the run cannot be continued";
   }
   catch (const std::exception &e)
   {
@@ -321,7 +352,7 @@ std::map<std::string, double> Simulation<dim>::run()
   }
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  RunSummary summary           = output.summarise(wall, step_count, dt, t);
+  RunSummary summary           = output.summarise(wall, step_count, clock, t);
   summary.status               = status;
   summary.message              = message.empty() ? output.stop_reason() : message;
   const std::uint64_t checksum = state_checksum();
@@ -332,6 +363,7 @@ std::map<std::string, double> Simulation<dim>::run()
   // failure.
   parts.ranks.barrier();
   // Every rank ends alike; main() tells this from an error on one rank only.
+  AssertThrow(status != "interrupted", ExcRunInterrupted(message));
   AssertThrow(status == "completed", ExcRunFailed(message));
   timer.print_summary();
   output.report_end(wall, step_count, stepper.exchange_seconds());

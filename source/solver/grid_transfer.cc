@@ -216,21 +216,25 @@ template <int dim>
 double GridTransfer<dim>::grid_to_particles(const ExplicitNewmark &newmark,
                                             const double dt,
                                             const Tensor<1, dim> &body_force,
-                                            const double max_move, std::size_t &bad)
+                                            const double max_move, std::size_t &bad,
+                                            double &max_speed)
 {
   const std::size_t n = particles.size();
   std::atomic<std::size_t> first_bad{n};
+  std::atomic<double> fastest{0.0};
   // A constant body force does work m b . dx over the step's displacement exactly.
   const double body_work = parallel::deterministic_sum<double>(
       n,
       [&](const std::size_t b, const std::size_t e)
       {
-        double pw = 0;
+        double pw = 0, v2 = 0;
         for (std::size_t p = b; p < e; ++p)
         {
           const Tensor<1, dim> a = interpolate(fields.acceleration, p);
-          particles.velocity[p]  = newmark.corrected_velocity(
-               particles.velocity[p], particles.acceleration[p], a, dt);
+          const Tensor<1, dim> v0 =
+              xpic_order > 0 ? interpolate(start_velocity, p) : particles.velocity[p];
+          particles.velocity[p] =
+              newmark.corrected_velocity(v0, particles.acceleration[p], a, dt);
           particles.acceleration[p] = a;
           particles.position[p] += increment[p];
           // Ghosts (copies of another rank's particles) are that rank's to sum and
@@ -239,14 +243,20 @@ double GridTransfer<dim>::grid_to_particles(const ExplicitNewmark &newmark,
             continue;
           if (prescribed_body.empty() || !prescribed_body[particles.body_id[p]])
             pw += particles.mass[p] * (body_force * increment[p]);
+          v2                = std::max(v2, particles.velocity[p].norm_square());
           const double move = increment[p].norm();
           if (!(move < max_move) || !std::isfinite(particles.velocity[p].norm_square()) ||
               !(particles.density[p] > 0))
             keep_lowest(first_bad, p);
         }
+        double seen = fastest.load();
+        while (v2 > seen && !fastest.compare_exchange_weak(seen, v2))
+        {
+        }
         return pw;
       });
-  bad = first_bad.load();
+  bad       = first_bad.load();
+  max_speed = std::sqrt(fastest.load());
   return body_work;
 }
 

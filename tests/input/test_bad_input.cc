@@ -2,6 +2,7 @@
 // the offending entry (or file) and what is allowed.
 #include <gtest/gtest.h>
 
+#include <lme_mpm/base/registry.h>
 #include <lme_mpm/output/run_summary.h>
 
 #include <nlohmann/json.hpp>
@@ -243,12 +244,13 @@ TEST(RunGuards, UnstableRunStopsWithDiagnosticAndKeepsItsOutput)
 {
   // CFL 1.9 is beyond the explicit limit: the bar blows up. The run must stop with the
   // step, time, particle and cause, keep history.csv and the particle files, and say
-  // 'aborted' in summary.json.
+  // 'aborted' in summary.json. (Without the travel limit, which would shorten the
+  // steps as the particles speed up: the energy guard below stops that run.)
   const std::string out = lme_mpm_test::scratch("unstable");
   const std::string msg = lme_mpm_test::run_error(
       lme_mpm_test::scene("vibrating_bar.prm"),
       {"Time/Maximum CFL=2", "Time/CFL=1.9", "Time/Mass matrix corrections=0",
-       "Output/Output interval=0.0005"},
+       "Output/Output interval=0.0005", "Time/Particle travel per step=0"},
       out);
   EXPECT_NE(msg.find("Run stopped at step"), std::string::npos) << msg;
   EXPECT_NE(msg.find("particle"), std::string::npos) << msg;
@@ -265,6 +267,24 @@ TEST(RunGuards, UnstableRunStopsWithDiagnosticAndKeepsItsOutput)
   std::stringstream text;
   text << summary.rdbuf();
   EXPECT_NE(text.str().find("\"status\": \"aborted\""), std::string::npos) << text.str();
+}
+
+TEST(RunGuards, RunThatBlewUpStopsOnItsEnergyUnderTheTravelLimit)
+{
+  // The same blow-up with the travel limit on: the limit shortens the steps as the
+  // particles speed up and would carry the wrecked bar to the end time; the energy
+  // guard stops it as unstable instead.
+  const std::string out = lme_mpm_test::scratch("unstable_limited");
+  const std::string msg = lme_mpm_test::run_error(
+      lme_mpm_test::scene("vibrating_bar.prm"),
+      {"Time/Maximum CFL=2", "Time/CFL=1.9", "Time/Mass matrix corrections=0",
+       "Output/Output interval=0.0005", "Time/Particle travel per step=0.01"},
+      out);
+  EXPECT_NE(msg.find("Run stopped at step"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("the total energy has drifted by"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("lower the CFL number"), std::string::npos) << msg;
+  const std::string summary = lme_mpm_test::file_text(out + "/summary.json");
+  EXPECT_NE(summary.find("\"status\": \"aborted\""), std::string::npos) << summary;
 }
 
 TEST(Documentation, ParametersPageIsCurrent)
@@ -285,4 +305,30 @@ TEST(Documentation, ParametersPageIsCurrent)
   ASSERT_NE(open, std::string::npos);
   EXPECT_EQ(text.substr(open + 4, close - open - 4), a.str())
       << "doc/parameters.md is stale: run scripts/update_parameters_doc.sh build";
+}
+
+TEST(Plugins, NameClashIsRefusedNamingBothLibraries)
+{
+  // A plug-in library that registers a softening law called 'linear' must not replace
+  // the built-in one: the run stops before writing anything, naming both owners.
+  const std::string out = lme_mpm_test::scratch("clash");
+  const std::string log = lme_mpm_test::scratch_path("clash.log");
+  const std::string cmd = std::string(LME_MPM_BINARY) + " " +
+                          lme_mpm_test::scene("vibrating_bar.prm") +
+                          " --set \"Additional shared libraries=" LME_MPM_CLASH_PLUGIN
+                          "\" --set \"Output/Directory=" +
+                          out + "\" > " + log + " 2>&1";
+  EXPECT_EQ(WEXITSTATUS(std::system(cmd.c_str())), 1);
+  const std::string text = lme_mpm_test::file_text(log);
+  EXPECT_NE(text.find("Additional shared libraries"), std::string::npos) << text;
+  EXPECT_NE(text.find("'linear' is registered by the lme-mpm library and again by the "
+                      "library '" LME_MPM_CLASH_PLUGIN "'"),
+            std::string::npos)
+      << text;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(Plugins, BuiltInsRegisterEachNameOnce)
+{
+  EXPECT_TRUE(lme_mpm::registration_log().refused.empty());
 }

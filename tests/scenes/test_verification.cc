@@ -137,3 +137,32 @@ TEST(VibratingBar, ThreeDimensionsMatchTwo)
     EXPECT_LT(r3.at("max_error_displacement_l2"), 0.02) << type;
   }
 }
+
+TEST(Threads, XpicResultsBitwiseIndependentOfThreadCount)
+{
+  const std::vector<std::string> xpic = {"Time/Particle update=xpic",
+                                         "Time/XPIC order=3"};
+  const auto one = disc_state(1, xpic), two = disc_state(2, xpic);
+  ASSERT_EQ(one.size(), two.size());
+  for (std::size_t i = 0; i < one.size(); ++i)
+    ASSERT_EQ(one[i], two[i]) << "entry " << i;
+  // And it is another update than FLIP's.
+  EXPECT_NE(one, disc_state(1));
+}
+
+TEST(ParticleSpeed, SlowRunsTakeTheCflSteps)
+{
+  // The bar at v/c = 3e-8 travels far less than the limit: the limit never binds and
+  // the run takes exactly the steps it took before the limit existed.
+  const auto free = lme_mpm_test::run_scene(
+      "vibrating_bar.prm", "bar_free",
+      {"Output/Write particle files=false", "Time/Particle travel per step=0"});
+  const auto limited = lme_mpm_test::run_scene(
+      "vibrating_bar.prm", "bar_limited",
+      {"Output/Write particle files=false", "Time/Particle travel per step=0.01"});
+  EXPECT_EQ(limited.at("travel_limited_steps"), 0);
+  EXPECT_EQ(limited.at("steps"), free.at("steps"));
+  EXPECT_EQ(lme_mpm_test::checksum(lme_mpm_test::scratch_path("bar_limited")),
+            lme_mpm_test::checksum(lme_mpm_test::scratch_path("bar_free")));
+  EXPECT_EQ(limited.at("smallest_time_step"), limited.at("time_step"));
+}

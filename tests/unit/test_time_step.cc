@@ -4,6 +4,7 @@
 
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/solver/run_parameters.h>
+#include <lme_mpm/solver/time_step_control.h>
 
 #include <cmath>
 
@@ -64,4 +65,57 @@ TEST(StableTimeStep, EveryImpossibleStepNamesItsEntry)
   // A wave speed that is not finite.
   EXPECT_NE(error_of(run, 0.01, std::numeric_limits<double>::infinity()).find("Time/CFL"),
             std::string::npos);
+}
+
+TEST(TimeStepControl, SlowParticlesTakeExactlyTheWaveSteps)
+{
+  TimeStepping wave;
+  wave.dt      = 1e-3 / 967;
+  wave.n_steps = 967;
+  TimeStepControl clock;
+  clock.set_up(wave, 1e-3, 0.01, 0.01);
+  // 1 m/s moves 1e-6 m per step, far below 0.01 of a 1 cm cell.
+  double t       = 0;
+  unsigned int n = 0;
+  while (!clock.finished(t, n))
+  {
+    EXPECT_EQ(clock.next(t, 1.0), wave.dt);
+    t += wave.dt;
+    ++n;
+  }
+  EXPECT_EQ(n, 967u);
+  EXPECT_EQ(clock.limited_steps(), 0u);
+}
+
+TEST(TimeStepControl, FastParticlesTravelAtMostTheLimitAndLandOnTheEnd)
+{
+  TimeStepping wave;
+  wave.dt      = 1e-4;
+  wave.n_steps = 100;
+  TimeStepControl clock;
+  const double h = 0.01, travel = 0.01, end = 1e-2;
+  clock.set_up(wave, end, travel, h);
+  // At 3 m/s the limit is 0.01 * 0.01 / 3 = 3.33e-5 s, a third of the wave step.
+  double t       = 0;
+  unsigned int n = 0;
+  double last    = 0;
+  while (!clock.finished(t, n) && n < 1000)
+  {
+    const double dt = clock.next(t, 3.0);
+    EXPECT_LE(3.0 * dt, travel * h * (1 + 1e-12));
+    EXPECT_GT(dt, 0.25 * travel * h / 3.0); // no sliver of a last step
+    t += dt;
+    last = dt;
+    ++n;
+  }
+  EXPECT_NEAR(t, end, 1e-15);
+  EXPECT_GT(last, 0);
+  EXPECT_GE(n, 300u);
+  EXPECT_LE(n, 301u);
+  EXPECT_EQ(clock.limited_steps(), n);
+  EXPECT_NEAR(clock.smallest_step(), std::min(travel * h / 3.0, last), 1e-18);
+  // Without a limit the wave step holds at any speed.
+  TimeStepControl unlimited;
+  unlimited.set_up(wave, end, 0, h);
+  EXPECT_EQ(unlimited.next(0, 1e6), wave.dt);
 }

@@ -31,7 +31,8 @@ struct PluginLibraries
    * Loads each library (dlopen, symbols resolved at once). A library that cannot be
    * loaded throws ExcBadInput naming the entry, the path and the loader's message.
    * Loading the same library twice is harmless: the loader keeps one copy and its
-   * plug-ins register once.
+   * plug-ins register once. A library that registers a name already taken (by the
+   * lme-mpm library or a library loaded before) throws ExcBadInput naming both.
    */
   static void load(const std::vector<std::string> &paths);
 };

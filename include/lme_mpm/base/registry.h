@@ -11,9 +11,23 @@
 #include <memory>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 namespace lme_mpm
 {
+/**
+ * Who is registering plug-ins now (the lme-mpm library itself, or the plug-in library
+ * PluginLibraries is loading) and the registrations refused so far because their
+ * name was taken: a plug-in cannot replace a built-in or another library's plug-in
+ * behind the user's back. One object for the whole process (defined in the library).
+ */
+struct RegistrationLog
+{
+  std::string current = "the lme-mpm library";
+  std::vector<std::string> refused;
+};
+RegistrationLog &registration_log();
+
 /**
  * Name-indexed entries, the storage and look-up every registry shares (the plug-in
  * registries below and the shapes of geometry.h). Names are kept sorted, so listings
@@ -23,9 +37,23 @@ template <class Entry>
 class NamedEntries
 {
 public:
-  /// Adds or replaces @p name; returns true so that it can initialise a static variable.
+  /**
+   * Adds @p name unless it is taken, in which case the first registration stays and
+   * the refusal is logged (registration_log()). Returns true so that it can
+   * initialise a static variable.
+   */
   bool add(const std::string &name, Entry entry)
   {
+    RegistrationLog &log = registration_log();
+    const auto taken     = owners.find(name);
+    if (taken != owners.end())
+    {
+      log.refused.push_back("'" + name + "' is registered by " + taken->second +
+                            " and again by " + log.current +
+                            " (the first registration is kept; rename the plug-in)");
+      return true;
+    }
+    owners[name]  = log.current;
     entries[name] = std::move(entry);
     return true;
   }
@@ -52,6 +80,8 @@ public:
 
 private:
   std::map<std::string, Entry> entries;
+  /// Who registered each name.
+  std::map<std::string, std::string> owners;
 };
 
 /// What a plug-in registry keeps of one plug-in (see Registry).

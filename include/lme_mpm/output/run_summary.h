@@ -3,6 +3,7 @@
 
 #include <deal.II/base/point.h>
 
+#include <lme_mpm/base/run_record.h>
 #include <lme_mpm/particles/particle_store.h>
 
 #include <cstdint>
@@ -18,6 +19,8 @@ struct RunSummary
   std::string status = "completed";
   std::string message;
   std::map<std::string, double> values;
+  /// How the run was started (summary.json's "run" object).
+  RunRecord record;
 
   /// Writes summary.json; @p checksum is the final state's (Simulation::state_checksum).
   void write(const std::string &file, const std::string &shape_function,

@@ -22,6 +22,8 @@ struct StepResult
   /// The work of the external forces over the step (J): the constraints' reactions,
   /// the body force and the prescribed bodies' contact, summed over the ranks.
   double external_work = 0;
+  /// The fastest particle's speed after the step (m/s, over the ranks).
+  double max_speed = 0;
 };
 
 /**
@@ -53,6 +55,10 @@ public:
    * step made unstable is reported in the result.
    */
   StepResult advance(double t, unsigned int step);
+  /// The length of the next step (TimeStepControl).
+  void set_time_step(const double step) { dt = step; }
+  /// The fastest particle's speed now (m/s, over the ranks).
+  double fastest_particle() const;
   /// A distributed run's particle exchange, after the step (nothing on one rank).
   void exchange_particles();
 

@@ -11,8 +11,8 @@ namespace lme_mpm
 {
 /**
  * What one explicit step of a particle reads, for the halo of a distributed run
- * (Decomposition::partition, HaloCells). Its nodes, the particles sharing those nodes, and theirs
- * again (strains from nodal velocities, then forces from the stresses): four
+ * (Decomposition::partition, HaloCells). Its nodes, the particles sharing those nodes,
+ * and theirs again (strains from nodal velocities, then forces from the stresses): four
  * support radii, two particle-node-particle passes. Each consistent-mass correction
  * pass adds a support there and back in the predictor and in the corrector, the
  * reactions' consistent mass M_C a one support more, and body contact the supports
@@ -28,7 +28,7 @@ template <int dim>
 HaloReach
 halo_reach(const BackgroundGrid<dim> &grid, const ShapeFunction<dim> &shape_function,
            const FractureCoupling<dim> &fracture, const BodyContact<dim> &contact,
-           unsigned int mass_corrections);
+           unsigned int mass_corrections, unsigned int xpic_order = 0);
 } // namespace lme_mpm
 
 #endif

@@ -26,6 +26,17 @@ void apply_overrides(dealii::ParameterHandler &prm,
 
 /// Writes the documented default parameter file of a 2D run.
 void print_default_parameters(std::ostream &out);
+
+/**
+ * Writes the parameter handler of @p file with @p overrides applied: every entry the
+ * file's run declares (its counts, dimension and plug-in libraries) with the values
+ * the run would read.
+ */
+void print_parameters(const std::string &file, const std::vector<std::string> &overrides,
+                      std::ostream &out);
+
+/// The command line of this process, for the runs' records (the program sets it).
+void set_command_line(const std::string &command_line);
 } // namespace lme_mpm
 
 #endif

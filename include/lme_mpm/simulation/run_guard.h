@@ -25,11 +25,17 @@ DeclException5(ExcRunAborted, unsigned int, double, unsigned int, std::string,
  * diagnostic (@p arg1) of the rank that holds it.
  */
 DeclException1(ExcRunStopped, std::string, << arg1);
+/// SIGINT or SIGTERM arrived (@p arg1 its name): the run ends after the step.
+DeclException3(ExcInterrupted, std::string, unsigned int, double,
+               << "Interrupted by " << arg1 << " after step " << arg2 << ", time " << arg3
+               << " s");
 /**
  * The run ended before its end time with its output written (@p arg1 says why). On
  * several ranks every rank throws it together, unlike an error on one rank.
  */
 DeclException1(ExcRunFailed, std::string, << arg1);
+/// The run ended on SIGINT or SIGTERM, its output written (@p arg1 says what is left).
+DeclException1(ExcRunInterrupted, std::string, << arg1);
 
 /**
  * Stops the run, on every rank together, when a particle goes wrong: it left the
@@ -53,6 +59,17 @@ public:
   /// Stops if particle @p p of some rank went wrong in the step that ended at step
   /// @p step, time @p t.
   void stop_if_unstable(std::size_t p, unsigned int step, double t) const;
+  /**
+   * Stops the run (on every rank) once the total energy has drifted by more than
+   * half of the run's energy scale (EnergyBalance): no stable run does that. Called
+   * where the travel limit on the time step has bound, which would otherwise carry a
+   * run that blew up onwards at ever shorter steps without any particle moving half a
+   * cell in one.
+   */
+  void stop_if_energy_runs_away(double drift, unsigned int step, double t) const;
+  /// Throws ExcInterrupted on every rank once any rank has received SIGINT or
+  /// SIGTERM (interrupt.h).
+  void stop_if_interrupted(unsigned int step, double t) const;
 
 private:
   /// Throws ExcRunAborted for particle @p p (one rank) or ExcRunStopped with its

@@ -16,6 +16,7 @@
 #include <lme_mpm/output/probes.h>
 #include <lme_mpm/output/run_summary.h>
 #include <lme_mpm/simulation/parts.h>
+#include <lme_mpm/solver/time_step_control.h>
 
 #include <chrono>
 #include <functional>
@@ -51,6 +52,9 @@ public:
   void parse_parameters(ParameterHandler &prm, unsigned int n_probes);
   /// Output goes to @p directory from now on (a resumed run's).
   void open(const std::string &directory);
+  /// How the run was started: prepare() writes its parameters as parameters.prm and
+  /// summarise() hands it to summary.json.
+  void keep_record(RunRecord r) { record = std::move(r); }
   const std::string &directory() const { return output_directory; }
   /// Console output: on rank 0 at a verbosity above 0.
   ConditionalOStream &console() { return pcout; }
@@ -66,7 +70,7 @@ public:
    * written before this), history.csv's header (or its continuation after a
    * checkpoint with @p resumed), and the run's banner.
    */
-  void prepare(bool resumed, double dt, unsigned int n_steps);
+  void prepare(bool resumed, const TimeStepControl &clock);
   /// After each step of length @p dt: its external work, the peak force and the
   /// contact forces' means.
   void after_step(double external_work, double dt);
@@ -87,12 +91,16 @@ public:
   /// Why the scene ended the run (empty if it did not).
   const std::string &stop_reason() const { return scene_stop; }
 
+  /// The largest drift of the total energy so far (EnergyBalance; rank 0's).
+  double energy_drift() const { return energy.max_drift(); }
   /// The energies now (J), over every particle of every rank.
   std::map<std::string, double> energies() const;
   /// The values of summary.json, from every particle; the files of the end of a run.
-  RunSummary summarise(double wall, unsigned int steps, double dt, double t);
+  RunSummary summarise(double wall, unsigned int steps, const TimeStepControl &clock,
+                       double t);
+  /// The progress line after @p step steps, a fraction @p done of the run.
   void report_progress(std::chrono::steady_clock::time_point start, unsigned int step,
-                       unsigned int n_steps, double t);
+                       double done, double t);
   /// The stage table, each rank's share (distributed runs, with its
   /// @p exchange_seconds) and the closing line.
   void report_end(double wall, unsigned int steps, double exchange_seconds);
@@ -112,6 +120,7 @@ public:
   void serialize(Archive &ar);
 
 private:
+  RunRecord record;
   /// One part's history columns and summary values.
   struct Columns
   {

@@ -11,6 +11,7 @@
 #include <lme_mpm/simulation/run_guard.h>
 #include <lme_mpm/simulation/run_output.h>
 #include <lme_mpm/solver/run_parameters.h>
+#include <lme_mpm/solver/time_step_control.h>
 
 #include <chrono>
 #include <cstdint>
@@ -37,6 +38,9 @@ public:
   /// Parses and checks everything; throws naming the entry on bad input. Writes nothing.
   Simulation(ParameterHandler &prm, const ParameterCounts &counts,
              std::ostream &console = std::cout);
+
+  /// How the run was started (kept in its output: parameters.prm, summary.json).
+  void keep_record(RunRecord record) { output.keep_record(std::move(record)); }
 
   /// Runs to the end time. Returns the summary values (also in summary.json).
   std::map<std::string, double> run();
@@ -89,8 +93,11 @@ private:
   ExplicitStep<dim> stepper;
   RunOutput<dim> output;
 
-  double dt = 0, t = 0;
-  unsigned int n_steps = 0, step_count = 0;
+  /// The steps' lengths; dt is the last one's, max_speed the fastest particle's speed
+  /// after it.
+  TimeStepControl clock;
+  double dt = 0, t = 0, max_speed = 0;
+  unsigned int step_count = 0;
   /// Particles in the whole run (on all ranks).
   std::size_t n_particles = 0;
   bool resumed            = false;

@@ -74,11 +74,51 @@ public:
    * Newmark corrector on the particles, their position update and the sanity
    * checks. Returns the work of the body force over the step; @p bad receives the
    * lowest index of a particle that moved more than @p max_move, or whose velocity
-   * is not finite or density not positive (the number of particles if none).
+   * is not finite or density not positive (the number of particles if none), and
+   * @p max_speed the largest particle speed on this rank.
    */
   double grid_to_particles(const ExplicitNewmark &newmark, double dt,
                            const Tensor<1, dim> &body_force, double max_move,
-                           std::size_t &bad);
+                           std::size_t &bad, double &max_speed);
+  /**
+   * The particle update of XPIC(@p order) (Hammerquist & Nairn 2017): the next
+   * grid_to_particles() starts each particle from the start-of-step grid velocity
+   * v* = sum_{k<order} (I - M_L^-1 M_C)^k v_g interpolated to it, in place of its own
+   * velocity, so the part of the particle velocities the grid cannot represent is
+   * dropped while the grid-representable part is kept to the order's accuracy
+   * (order 1 is PIC). @p constrain imposes the constraints' velocities on each
+   * term. Order 0 restores the FLIP update.
+   */
+  template <class Constrain>
+  void extend_start_velocity(const unsigned int order, const double mass_tolerance,
+                             const Constrain &constrain)
+  {
+    xpic_order = order;
+    if (order == 0)
+      return;
+    start_velocity.resize(fields.mass.size());
+    term.resize(fields.mass.size());
+    fields.for_active(
+        [&](const unsigned int I)
+        {
+          term[I] = fields.mass[I] > mass_tolerance ? fields.momentum[I] / fields.mass[I]
+                                                    : Tensor<1, dim>();
+        });
+    constrain(term);
+    fields.for_active([&](const unsigned int I) { start_velocity[I] = term[I]; });
+    for (unsigned int k = 1; k < order; ++k)
+    {
+      apply_consistent_mass(term, fields.scratch);
+      fields.for_active(
+          [&](const unsigned int I)
+          {
+            if (fields.mass[I] > mass_tolerance)
+              term[I] -= fields.scratch[I] / fields.mass[I];
+          });
+      constrain(term);
+      fields.for_active([&](const unsigned int I) { start_velocity[I] += term[I]; });
+    }
+  }
 
   /**
    * Distributed runs: the supports' reach in cell layers is made the same on every
@@ -212,6 +252,9 @@ private:
   std::vector<std::uint8_t> prescribed_body;
   /// Per particle: scratch of the consistent-mass product.
   std::vector<Tensor<1, dim>> particle_scratch;
+  /// XPIC: its order (0: FLIP), the nodal start velocity v* and a term of its series.
+  unsigned int xpic_order = 0;
+  std::vector<Tensor<1, dim>> start_velocity, term;
 };
 } // namespace lme_mpm
 

@@ -52,6 +52,10 @@ struct RunParameters
   // Time
   double end_time = 1, cfl = 0.3, fixed_time_step = 0, max_cfl = 1, newmark_gamma = 0.5;
   unsigned int mass_corrections = 0, max_steps = 0;
+  /// Largest particle travel per step, in smallest cells (0: no limit).
+  double particle_travel = 0;
+  /// The particle update: 0 FLIP, m > 0 XPIC(m).
+  unsigned int xpic_order = 0;
   // Output
   std::string directory;
   double output_interval = 0;
@@ -70,7 +74,8 @@ struct RunParameters
 
 private:
   void entries(EntryList &list);
-  std::string plane_assumption, body_force_text;
+  std::string plane_assumption, body_force_text, particle_update;
+  unsigned int xpic_order_entry = 2;
 };
 
 /// The time step and the number of steps that land exactly on the end time.

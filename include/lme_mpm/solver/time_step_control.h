@@ -1,0 +1,84 @@
+#ifndef LME_MPM_SOLVER_TIME_STEP_CONTROL_H
+#define LME_MPM_SOLVER_TIME_STEP_CONTROL_H
+
+#include <lme_mpm/solver/run_parameters.h>
+
+#include <algorithm>
+#include <limits>
+
+namespace lme_mpm
+{
+/**
+ * The length of each step. The stable step of the wave speed (TimeStepping: CFL or
+ * fixed) holds unless the fastest particle would travel more than a fraction
+ * `travel` of the smallest cell in it (Time/Particle travel per step): the explicit
+ * update evaluates the shape functions at the start-of-step positions for the whole
+ * step, and its error grows with that travel (doc/stability.md). A run in which the
+ * limit never binds takes exactly the wave steps; one in which it does lands on the
+ * end time without a sliver of a last step.
+ */
+class TimeStepControl
+{
+public:
+  void set_up(const TimeStepping &wave, const double end_time, const double travel,
+              const double h_min)
+  {
+    wave_dt    = wave.dt;
+    wave_steps = wave.n_steps;
+    end        = end_time;
+    max_travel = travel * h_min;
+  }
+
+  /// The step the wave speed and the travel limit allow at the particle speed @p v.
+  double allowed(const double v) const
+  {
+    return max_travel > 0 && v * wave_dt > max_travel ? max_travel / v : wave_dt;
+  }
+
+  /// The step from time @p t when the fastest particle moves at @p max_speed.
+  double next(const double t, const double max_speed)
+  {
+    double dt = allowed(max_speed);
+    if (dt < wave_dt)
+      ++n_limited;
+    if (n_limited > 0)
+    {
+      const double remaining = end - t;
+      if (remaining <= dt)
+        dt = remaining;
+      else if (remaining < 2 * dt)
+        dt = 0.5 * remaining;
+    }
+    smallest_dt = std::min(smallest_dt, dt);
+    return dt;
+  }
+
+  /// True once the run has reached its end time after @p steps steps.
+  bool finished(const double t, const unsigned int steps) const
+  {
+    return n_limited == 0 ? steps >= wave_steps : t >= end - 1e-9 * wave_dt;
+  }
+
+  double wave_step() const { return wave_dt; }
+  /// The steps the run takes where the limit never binds.
+  unsigned int planned_steps() const { return wave_steps; }
+  double end_time() const { return end; }
+  double smallest_step() const { return std::min(smallest_dt, wave_dt); }
+  /// Steps shortened by the travel limit so far.
+  unsigned long long limited_steps() const { return n_limited; }
+
+  template <class Archive>
+  void serialize(Archive &ar)
+  {
+    ar(n_limited, smallest_dt);
+  }
+
+private:
+  double wave_dt = 0, end = 0, max_travel = 0;
+  unsigned int wave_steps      = 0;
+  unsigned long long n_limited = 0;
+  double smallest_dt           = std::numeric_limits<double>::max();
+};
+} // namespace lme_mpm
+
+#endif
