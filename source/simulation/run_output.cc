@@ -1,4 +1,5 @@
 #include <lme_mpm/base/format.h>
+#include <lme_mpm/base/input.h>
 #include <lme_mpm/simulation/run_output.h>
 
 #include <fstream>
@@ -365,6 +366,21 @@ void RunOutput<dim>::report_end(const double wall, const unsigned int steps,
   pcout << "Finished: " << steps << " steps in " << wall << " s ("
         << (rate == results.end() ? 0.0 : rate->second)
         << " particle-steps/s); max energy drift " << energy.max_drift() << std::endl;
+}
+
+template <int dim>
+void RunOutput<dim>::serialize_parameters(Archive &ar)
+{
+  std::string saved = record.parameters;
+  ar(saved);
+  if (!ar.loading() || record.parameters.empty() || saved.empty())
+    return;
+  const std::string changed = first_changed_entry(saved, record.parameters);
+  AssertThrow(changed.empty(),
+              ExcBadInput("--resume",
+                          "the checkpoint was written with other parameters (" + changed +
+                              "): resume with the parameter file and --set "
+                              "values of the run that wrote it"));
 }
 
 template <int dim>

@@ -117,6 +117,35 @@ TEST(Checkpoint, ResumedRunEndsBitwiseIdentical)
   refused("not a checkpoint", "is not an lme-mpm checkpoint");
 }
 
+TEST(Checkpoint, ResumeWithAChangedEntryIsRefusedNamingIt)
+{
+  // A changed material entry passes every size check of the checkpoint but changes
+  // the results: it is refused by name. A changed output entry is not.
+  const std::vector<std::string> scene = {
+      "Output/Verbosity=0", "Output/Output interval=2e-4", "Time/End time=4e-4",
+      "Checkpoint/Every steps=100"};
+  const std::string prm = lme_mpm_test::scene("tension_bar.prm");
+  const std::string dir = lme_mpm_test::scratch("ckpt_changed");
+  std::ostringstream quiet;
+  lme_mpm::run_parameter_file(prm, with_settings(scene, {}, dir), quiet);
+  ASSERT_TRUE(std::filesystem::exists(dir + "/checkpoint.bin"));
+  try
+  {
+    lme_mpm::run_parameter_file(
+        prm, with_settings(scene, {"Material 1/Fracture/Tensile strength=3.1e6"}, dir),
+        quiet, dir);
+    ADD_FAILURE() << "resumed with a changed tensile strength";
+  }
+  catch (const std::exception &e)
+  {
+    const std::string msg = lme_mpm::input::concise_message(e);
+    EXPECT_NE(msg.find("--resume"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("Material 1/Fracture/Tensile strength"), std::string::npos) << msg;
+  }
+  EXPECT_NO_THROW(lme_mpm::run_parameter_file(
+      prm, with_settings(scene, {"Output/Write particle files=false"}, dir), quiet, dir));
+}
+
 TEST(Checkpoint, TooNarrowSlabsAreRedone)
 {
   // The slab width of the fused particle-to-grid pass is the supports' reach so

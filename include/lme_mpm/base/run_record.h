@@ -27,6 +27,14 @@ struct RunRecord
   std::string resumed_from;           ///< --resume directory, if any
   std::string parameters;             ///< the whole handler in PRM form
 };
+
+/**
+ * The first entry whose value differs between two parameter sets in PRM form (as
+ * RunRecord::parameters holds them), as "Subsection/Entry: 'old' -> 'new'"; empty if
+ * none does. Entries that do not change results are skipped: the Output and Checkpoint
+ * subsections and Time/Maximum steps.
+ */
+std::string first_changed_entry(const std::string &before, const std::string &after);
 } // namespace lme_mpm
 
 #endif

@@ -55,6 +55,12 @@ public:
   /// How the run was started: prepare() writes its parameters as parameters.prm and
   /// summarise() hands it to summary.json.
   void keep_record(RunRecord r) { record = std::move(r); }
+  /**
+   * The parameters into a checkpoint; when loading, refuses (ExcBadInput naming the
+   * entry) a run whose parameters differ from the checkpoint's in an entry that
+   * changes results.
+   */
+  void serialize_parameters(Archive &ar);
   const std::string &directory() const { return output_directory; }
   /// Console output: on rank 0 at a verbosity above 0.
   ConditionalOStream &console() { return pcout; }
