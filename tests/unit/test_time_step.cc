@@ -119,3 +119,18 @@ TEST(TimeStepControl, FastParticlesTravelAtMostTheLimitAndLandOnTheEnd)
   unlimited.set_up(wave, end, 0, h);
   EXPECT_EQ(unlimited.next(0, 1e6), wave.dt);
 }
+
+TEST(TimeStepControl, OnceLimitedTheStepDoesNotGrowAgain)
+{
+  TimeStepping wave;
+  wave.dt      = 1e-4;
+  wave.n_steps = 1000;
+  TimeStepControl clock;
+  clock.set_up(wave, 0.1, 0.01, 0.01);
+  const double fast = clock.next(0, 3.0); // 3.33e-5
+  EXPECT_NEAR(fast, 1e-4 / 3, 1e-18);
+  // The body turns and slows down: the step stays at the one the limit set.
+  EXPECT_EQ(clock.next(fast, 0.1), fast);
+  // Faster still: shorter again.
+  EXPECT_LT(clock.next(2 * fast, 6.0), fast);
+}

@@ -14,8 +14,9 @@ namespace lme_mpm
  * `travel` of the smallest cell in it (Time/Particle travel per step): the explicit
  * update evaluates the shape functions at the start-of-step positions for the whole
  * step, and its error grows with that travel (doc/stability.md). A run in which the
- * limit never binds takes exactly the wave steps; one in which it does lands on the
- * end time without a sliver of a last step.
+ * limit never binds takes exactly the wave steps; in one in which it does, the step
+ * does not grow again after the limit has set it (next()), and the run lands on the end
+ * time without a sliver of a last step.
  */
 class TimeStepControl
 {
@@ -35,12 +36,21 @@ public:
     return max_travel > 0 && v * wave_dt > max_travel ? max_travel / v : wave_dt;
   }
 
-  /// The step from time @p t when the fastest particle moves at @p max_speed.
+  /**
+   * The step from time @p t when the fastest particle moves at @p max_speed. Once the
+   * limit has bound, the step never grows again: a step that breathes with the motion
+   * (short while the body is fast, long while it turns) pumps energy into a vibration
+   * through the central-difference update (the bar at 0.1 c with B-splines: 2.9 %
+   * over three periods against 2e-4 at the constant short step).
+   */
   double next(const double t, const double max_speed)
   {
-    double dt = allowed(max_speed);
+    double dt = std::min(allowed(max_speed), n_limited > 0 ? held_dt : wave_dt);
     if (dt < wave_dt)
+    {
       ++n_limited;
+      held_dt = dt;
+    }
     if (n_limited > 0)
     {
       const double remaining = end - t;
@@ -70,7 +80,7 @@ public:
   template <class Archive>
   void serialize(Archive &ar)
   {
-    ar(n_limited, smallest_dt);
+    ar(n_limited, smallest_dt, held_dt);
   }
 
 private:
@@ -78,6 +88,8 @@ private:
   unsigned int wave_steps      = 0;
   unsigned long long n_limited = 0;
   double smallest_dt           = std::numeric_limits<double>::max();
+  /// The shortest step the limit has set (steps never grow past it again).
+  double held_dt = std::numeric_limits<double>::max();
 };
 } // namespace lme_mpm
 
