@@ -18,8 +18,9 @@ install(DIRECTORY ${CMAKE_SOURCE_DIR}/include/lme_mpm
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/prm/ DESTINATION ${CMAKE_INSTALL_DATADIR}/lme_mpm/prm)
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/doc/ DESTINATION ${CMAKE_INSTALL_DOCDIR}
         PATTERN Doxyfile EXCLUDE)
-install(PROGRAMS ${CMAKE_SOURCE_DIR}/scripts/plot_history.py
-                 ${CMAKE_SOURCE_DIR}/scripts/plot_mode_i.py
+# Every scene's plot script, with the helpers they import.
+file(GLOB LME_MPM_PLOT_SCRIPTS ${CMAKE_SOURCE_DIR}/scripts/plot_*.py)
+install(PROGRAMS ${LME_MPM_PLOT_SCRIPTS} ${CMAKE_SOURCE_DIR}/scripts/scene_plots.py
         DESTINATION ${CMAKE_INSTALL_DATADIR}/lme_mpm/scripts)
 install(FILES ${CMAKE_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
 

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Drop-weight impact: for each run, the impact force and the summed support reaction
 against the time from the first contact, with the peaks of the paper's simulation
-(reference/README.md section 5) marked, above the beam's final damage drawn on its
+(doc/reference_data.md section 5) marked, above the beam's final damage drawn on its
 reference configuration (the crack pattern), in one PNG.
 
     /usr/bin/python3 scripts/plot_drop_weight.py out/v264 out/v176 out/v088 \\

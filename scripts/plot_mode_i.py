@@ -7,7 +7,7 @@ loading branch and crack extent through the ligament.
 
 Each argument is an output directory (history.csv, summary.json and, for the crack,
 failed_particles.csv). Defaults are the Griffith values for u_x free, plane strain
-(reference/README.md section 2)."""
+(doc/reference_data.md section 2)."""
 import argparse
 import csv
 import json

@@ -10,8 +10,10 @@
 #include <lme_mpm/simulation/run.h>
 #include <lme_mpm/simulation/run_guard.h>
 
+#include <chrono>
 #include <iostream>
 #include <memory>
+#include <thread>
 
 #ifdef __SANITIZE_ADDRESS__
 #include <sanitizer/lsan_interface.h>
@@ -36,17 +38,42 @@ public:
 #endif
     mpi = std::make_unique<dealii::Utilities::MPI::MPI_InitFinalize>(
         argc, argv, dealii::numbers::invalid_unsigned_int);
+    MPI_Comm_dup(MPI_COMM_WORLD, &errors);
   }
   ~MpiSession()
   {
 #ifdef __SANITIZE_ADDRESS__
     __lsan::ScopedDisabler not_ours;
 #endif
+    MPI_Comm_free(&errors);
     mpi.reset();
+  }
+
+  /**
+   * Whether every rank reports an error within @p seconds. Bad input fails alike on
+   * every rank, which then end cleanly with one message; an error on some ranks only
+   * (the others wait in a collective call of the run) needs MPI_Abort. The handshake
+   * runs on a communicator of its own, so it cannot meet the run's collective calls.
+   */
+  bool all_ranks_failed(const double seconds) const
+  {
+    MPI_Request request;
+    MPI_Ibarrier(errors, &request);
+    const auto end =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    int done = 0;
+    while (!done && std::chrono::steady_clock::now() < end)
+    {
+      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+      if (!done)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return done != 0;
   }
 
 private:
   std::unique_ptr<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
+  MPI_Comm errors = MPI_COMM_NULL;
 };
 } // namespace
 
@@ -162,6 +189,13 @@ int main(int argc, char **argv)
       // it in a collective call: stop them all (the output written so far stays).
       if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
       {
+        if (mpi.all_ranks_failed(5.0))
+        {
+          if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+            std::cerr << "lme-mpm: error: " << lme_mpm::input::concise_message(e)
+                      << std::endl;
+          return 1;
+        }
         std::cerr << "lme-mpm: error on rank "
                   << dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) << ": "
                   << lme_mpm::input::concise_message(e) << std::endl;

@@ -1,7 +1,9 @@
 #include <lme_mpm/base/input.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <iostream>
 #include <sstream>
 
 namespace lme_mpm
@@ -161,6 +163,12 @@ void parse_function(dealii::ParameterHandler &prm, const std::string &section,
                     dealii::Functions::ParsedFunction<dim> &f, const std::string &entry)
 {
   prm.enter_subsection(section);
+  const std::string expression = prm.get("Function expression"),
+                    variables  = prm.get("Variable names");
+  // deal.II prints muParser's own report to std::cerr before it throws: keep it
+  // for the one-line message instead.
+  std::ostringstream parser_report;
+  std::streambuf *const console = std::cerr.rdbuf(parser_report.rdbuf());
   try
   {
     f.parse_parameters(prm);
@@ -169,13 +177,25 @@ void parse_function(dealii::ParameterHandler &prm, const std::string &section,
   }
   catch (...)
   {
+    std::cerr.rdbuf(console);
     prm.leave_subsection();
-    AssertThrow(false, ExcBadInput(entry + "/Function expression",
-                                   "not a valid expression of the coordinates and t "
-                                   "with " +
-                                       std::to_string(f.n_components) +
-                                       " components separated by ';'"));
+    const std::string report = parser_report.str(), tag = "Token:";
+    std::string token;
+    if (const auto at = report.find(tag); at != std::string::npos)
+    {
+      const auto open = report.find('<', at), close = report.find('>', open);
+      if (open != std::string::npos && close != std::string::npos)
+        token = report.substr(open + 1, close - open - 1);
+    }
+    std::string message = "'" + expression + "' is not an expression of " + variables +
+                          " with " + std::to_string(f.n_components) +
+                          " component(s) separated by ';'";
+    if (!token.empty())
+      message += ": '" + token + "' is not a known function, variable or constant " +
+                 "(constants are defined in '" + entry + "/Function constants')";
+    AssertThrow(false, ExcBadInput(entry + "/Function expression", message));
   }
+  std::cerr.rdbuf(console);
   prm.leave_subsection();
 }
 
@@ -189,6 +209,116 @@ template void parse_function<3>(dealii::ParameterHandler &, const std::string &,
 std::string subsection_name(const std::string &kind, const unsigned int i)
 {
   return kind + " " + std::to_string(i + 1);
+}
+
+std::map<std::string, std::string> entry_values(const std::string &text)
+{
+  std::map<std::string, std::string> values;
+  std::vector<std::string> path;
+  std::istringstream lines(text);
+  std::string line;
+  while (std::getline(lines, line))
+  {
+    line = trim(line);
+    if (line.rfind("subsection ", 0) == 0)
+      path.push_back(trim(line.substr(11)));
+    else if (line == "end" && !path.empty())
+      path.pop_back();
+    else if (line.rfind("set ", 0) == 0)
+    {
+      const auto eq = line.find('=');
+      if (eq == std::string::npos)
+        continue;
+      std::string key;
+      for (const auto &p : path)
+        key += p + "/";
+      values[key + trim(line.substr(4, eq - 4))] = trim(line.substr(eq + 1));
+    }
+  }
+  return values;
+}
+
+std::vector<std::string> declared_entries(const dealii::ParameterHandler &prm)
+{
+  // The short PRM form lists the tree as "subsection", "set" and "end" lines.
+  std::ostringstream text;
+  prm.print_parameters(text, dealii::ParameterHandler::ShortPRM);
+  std::vector<std::string> entries;
+  for (const auto &[path, value] : entry_values(text.str()))
+    entries.push_back(path);
+  return entries;
+}
+
+namespace
+{
+std::size_t edit_distance(const std::string &a, const std::string &b)
+{
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j)
+    row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i)
+  {
+    std::size_t diagonal = row[0];
+    row[0]               = i;
+    for (std::size_t j = 1; j <= b.size(); ++j)
+    {
+      const std::size_t above = row[j];
+      const bool same         = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                        std::tolower(static_cast<unsigned char>(b[j - 1]));
+      row[j]   = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string last_part(const std::string &path)
+{
+  const auto slash = path.rfind('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+} // namespace
+
+std::string did_you_mean(const std::string &wanted,
+                         const std::vector<std::string> &candidates)
+{
+  std::string best;
+  double best_score = 1e9;
+  for (const auto &c : candidates)
+  {
+    // Relative to the longer string's length, so that short names need a closer
+    // match; the last parts alone score a little worse than a match of the paths.
+    const double whole =
+        double(edit_distance(wanted, c)) /
+        double(std::max<std::size_t>(std::max(wanted.size(), c.size()), 1));
+    const std::string a = last_part(wanted), b = last_part(c);
+    const double last =
+        0.05 + double(edit_distance(a, b)) /
+                   double(std::max<std::size_t>(std::max(a.size(), b.size()), 1));
+    const double score = std::min(whole, last);
+    if (score < best_score && c != wanted)
+    {
+      best_score = score;
+      best       = c;
+    }
+  }
+  return best_score <= 0.34 ? " (did you mean '" + best + "'?)" : "";
+}
+
+std::string selection_hint(const std::string &value, const std::string &message)
+{
+  const std::string tag = "[Selection ";
+  const auto at         = message.find(tag);
+  if (at == std::string::npos)
+    return "";
+  const auto end   = message.find(']', at);
+  const auto names = split(message.substr(at + tag.size(), end == std::string::npos
+                                                               ? std::string::npos
+                                                               : end - at - tag.size()),
+                           '|');
+  return did_you_mean(trim(value), names) +
+         "; a name that a plug-in registers is known once its library is loaded with "
+         "'Additional shared libraries'";
 }
 } // namespace input
 } // namespace lme_mpm

@@ -68,6 +68,8 @@ public:
   {
     declare_shared_fracture_parameters(prm);
     EntryList::declare<EigensofteningEntries>(prm);
+    // A law with entries of its own keeps them in a subsection named after it.
+    SofteningLawRegistry::instance().declare_all(prm);
   }
 
   Eigensoftening(ParameterHandler &prm, const FractureContext &c)

@@ -83,6 +83,20 @@ double MaterialSet<dim>::max_wave_speed() const
 }
 
 template <int dim>
+std::string MaterialSet<dim>::wave_speed_entries() const
+{
+  unsigned int fastest = 0;
+  for (unsigned int m = 0; m < models.size(); ++m)
+    if (!(models[m]->wave_speed() <= models[fastest]->wave_speed()))
+      fastest = m;
+  if (models.empty())
+    return "the materials' entries";
+  const std::string material = input::subsection_name("Material", fastest);
+  return "'" + material + "/Density' and the entries of '" + material + "/" +
+         models[fastest]->name() + "'";
+}
+
+template <int dim>
 double MaterialSet<dim>::strain_energy(const ParticleStore<dim> &particles,
                                        const std::size_t begin,
                                        const std::size_t end) const

@@ -18,8 +18,10 @@ void RunSummary::write(const std::string &file, const std::string &shape_functio
   std::ostringstream hex;
   hex << std::hex << checksum;
   std::string non_finite;
-  json["status"]         = status;
-  json["message"]        = message;
+  json["status"]  = status;
+  json["message"] = message;
+  if (!stop_reason.empty())
+    json["stop_reason"] = stop_reason;
   json["shape_function"] = shape_function;
   json["state_checksum"] = hex.str();
   json["dimension"]      = dim;

@@ -137,9 +137,23 @@ template <int dim>
 std::unique_ptr<Scene<dim>> create_scene(ParameterHandler &prm,
                                          const SceneContext<dim> &context)
 {
+  const std::string type = prm.get(std::vector<std::string>{"Scene"}, "Type");
+  // Another scene's entries would be read by nobody: a value set there is refused.
+  if (context.declarations)
+    for (const auto &path : input::declared_entries(*context.declarations))
+    {
+      const auto parts = input::split(path, '/');
+      if (parts.size() < 3 || parts[0] != "Scene" || parts[1] == type)
+        continue;
+      const std::vector<std::string> subsection(parts.begin(), parts.end() - 1);
+      AssertThrow(prm.get(subsection, parts.back()) ==
+                      context.declarations->get(subsection, parts.back()),
+                  ExcBadInput(path, "belongs to the scene '" + parts[1] +
+                                        "', but 'Scene/Type' is '" + type +
+                                        "': remove it, or select that scene"));
+    }
   prm.enter_subsection("Scene");
-  const std::string type = prm.get("Type");
-  auto scene             = SceneRegistry<dim>::instance().create(type, prm, context);
+  auto scene = SceneRegistry<dim>::instance().create(type, prm, context);
   prm.leave_subsection();
   return scene;
 }

@@ -3,7 +3,10 @@
 #include <lme_mpm/simulation/run.h>
 #include <lme_mpm/simulation/simulation.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <regex>
 #include <sstream>
 
 namespace lme_mpm
@@ -29,14 +32,21 @@ void apply_overrides(ParameterHandler &prm, const std::vector<std::string> &over
     {
       for (std::size_t i = 0; i + 1 < path.size(); ++i)
         prm.leave_subsection();
-      AssertThrow(skip_unknown, ExcBadInput(o.substr(0, eq), "no such entry"));
+      AssertThrow(skip_unknown,
+                  ExcBadInput(o.substr(0, eq),
+                              "no such entry" +
+                                  input::did_you_mean(input::trim(o.substr(0, eq)),
+                                                      input::declared_entries(prm))));
       continue;
     }
     catch (const ParameterHandler::ExcValueDoesNotMatchPattern &e)
     {
       for (std::size_t i = 0; i + 1 < path.size(); ++i)
         prm.leave_subsection();
-      AssertThrow(skip_unknown, ExcBadInput(o.substr(0, eq), input::concise_message(e)));
+      const std::string message = input::concise_message(e);
+      AssertThrow(
+          skip_unknown,
+          ExcBadInput(o.substr(0, eq), message + input::selection_hint(value, message)));
       continue;
     }
     for (std::size_t i = 0; i + 1 < path.size(); ++i)
@@ -75,6 +85,83 @@ ParameterCounts first_pass(const std::string &file,
   return counts;
 }
 
+/// The subsection path ("A/B") open at line @p line of @p file.
+std::string subsection_at(const std::string &file, const unsigned int line)
+{
+  std::ifstream in(file);
+  std::vector<std::string> path;
+  std::string text;
+  for (unsigned int n = 1; n < line && std::getline(in, text); ++n)
+  {
+    text = input::trim(text.substr(0, text.find('#')));
+    if (text.rfind("subsection ", 0) == 0)
+      path.push_back(input::trim(text.substr(11)));
+    else if (text == "end" && !path.empty())
+      path.pop_back();
+  }
+  std::string joined;
+  for (const auto &p : path)
+    joined += p + "/";
+  return joined;
+}
+
+/**
+ * Rethrows deal.II's message on a misspelled entry or subsection, or a value that is
+ * not one of a selection's names, in the file @p file, as one line naming the entry
+ * with its subsections, the line, and the closest declared name.
+ */
+template <int dim>
+void explain_file_error(const std::exception &e, const std::string &file,
+                        const ParameterCounts &counts)
+{
+  const std::string what = input::concise_message(e);
+  // deal.II's form: "Line <N> of file <F>: ..." (the '>' after F is missing in some).
+  std::smatch m;
+  if (!std::regex_search(what, m, std::regex("Line <([0-9]+)> of file <")))
+    return;
+  const auto colon = what.find(": ", m.position(0) + m.length(0));
+  if (colon == std::string::npos)
+    return;
+  const unsigned int line = std::stoul(m[1].str());
+  const std::string rest  = what.substr(colon + 2),
+                    where = " (line " + m[1].str() + " of " + file + ")";
+  ParameterHandler declared;
+  Simulation<dim>::declare_parameters(declared, counts);
+  const auto entries = input::declared_entries(declared);
+  std::smatch n;
+  if (std::regex_search(rest, n, std::regex("No entry with name <([^>]*)>")))
+  {
+    const std::string entry = subsection_at(file, line) + input::trim(n[1].str());
+    AssertThrow(false, ExcBadInput(entry, "no such entry" + where +
+                                              input::did_you_mean(entry, entries)));
+  }
+  if (std::regex_search(rest, n,
+                        std::regex("no such subsection to be entered: ?<?([^>]*)>?")))
+  {
+    std::string sub = input::trim(n[1].str());
+    std::replace(sub.begin(), sub.end(), '.', '/');
+    std::vector<std::string> subsections;
+    for (const auto &entry : entries)
+      for (auto slash = entry.find('/'); slash != std::string::npos;
+           slash      = entry.find('/', slash + 1))
+        subsections.push_back(entry.substr(0, slash));
+    AssertThrow(false, ExcBadInput(sub, "no such subsection" + where +
+                                            input::did_you_mean(sub, subsections)));
+  }
+  if (std::regex_search(
+          rest, n,
+          std::regex("entry value\\s+<?([^<>]*?)>?\\s+for the entry named\\s+<?"
+                     "([^<>]*?)>?\\s+does not match")))
+  {
+    const std::string entry = subsection_at(file, line) + input::trim(n[2].str());
+    AssertThrow(false,
+                ExcBadInput(entry, "'" + n[1].str() + "' is not allowed" + where + ": " +
+                                       input::trim(rest.substr(std::min(
+                                           rest.find("does not match"), rest.size()))) +
+                                       input::selection_hint(n[1].str(), rest)));
+  }
+}
+
 template <int dim>
 void read_file(ParameterHandler &prm, const std::string &file,
                const std::vector<std::string> &overrides, const ParameterCounts &counts)
@@ -93,7 +180,10 @@ void read_file(ParameterHandler &prm, const std::string &file,
                       tag  = "no such subsection to be entered: ";
     const auto at          = what.find(tag);
     if (at == std::string::npos)
+    {
+      explain_file_error<dim>(e, file, counts);
       throw;
+    }
     const std::string rest = what.substr(at + tag.size());
     const std::string sub  = input::trim(rest.substr(0, rest.find('\n')));
     std::string count;
@@ -106,7 +196,10 @@ void read_file(ParameterHandler &prm, const std::string &file,
       if (sub.rfind(prefix, 0) == 0)
         count = entry;
     if (count.empty())
+    {
+      explain_file_error<dim>(e, file, counts);
       throw;
+    }
     AssertThrow(false, ExcBadInput(count, "the file has a subsection '" + sub +
                                               "', beyond the number this entry gives"));
   }

@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <numeric>
 #include <sstream>
+#include <system_error>
 
 namespace lme_mpm
 {
@@ -148,7 +149,13 @@ void RunOutput<dim>::prepare(const bool resumed, const TimeStepControl &clock)
   // Only now, with every input checked, does the run write anything (rank 0 makes
   // the directory the others write their pieces to).
   if (writes_files())
-    std::filesystem::create_directories(output_directory);
+  {
+    std::error_code ec;
+    std::filesystem::create_directories(output_directory, ec);
+    AssertThrow(!ec,
+                ExcBadInput("Output/Directory",
+                            "cannot create '" + output_directory + "': " + ec.message()));
+  }
   parts.ranks.barrier();
   if (!writes_files())
     return;
@@ -260,8 +267,7 @@ std::string RunOutput<dim>::scene_finished(const double t)
       writes_files() ? parts.scene->finished(scene_state(t, last_observed())) : "");
   if (!reason.empty())
   {
-    results["stopped_early"] = 1;
-    scene_stop               = reason;
+    scene_stop = reason;
     pcout << "Stopped at t = " << t << ": " << reason << std::endl;
   }
   return reason;

@@ -46,7 +46,8 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
   parts.fracture.parse_parameters(prm, parts.materials, parts.grid,
                                   parts.parameters.thickness);
   const TimeStepping ts = stable_time_step(parts.parameters, parts.grid.min_spacing(),
-                                           parts.materials.max_wave_speed());
+                                           parts.materials.max_wave_speed(),
+                                           parts.materials.wave_speed_entries());
   clock.set_up(ts, parts.parameters.end_time, parts.parameters.particle_travel,
                parts.grid.min_spacing());
   dt = ts.dt;
@@ -321,10 +322,22 @@ std::map<std::string, double> Simulation<dim>::run()
   TimerOutput timer(output.console(), TimerOutput::never, TimerOutput::wall_times);
   const auto start = std::chrono::steady_clock::now();
   output.prepare(resumed, clock);
-  std::string status = "completed", message;
+  std::string status = "completed", message, stop_reason;
   try
   {
     advance_to_end(timer, start);
+    if (!output.stop_reason().empty())
+    {
+      status      = "stopped";
+      stop_reason = "scene";
+    }
+  }
+  catch (const ExcStepLimit &e)
+  {
+    // A trial run that asked for fewer steps: it ends as planned, not as an error.
+    status      = "stopped";
+    stop_reason = "Time/Maximum steps";
+    message     = end_failed_run(e);
   }
   catch (const ExcInterrupted &e)
   {
@@ -354,6 +367,7 @@ std::map<std::string, double> Simulation<dim>::run()
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   RunSummary summary           = output.summarise(wall, step_count, clock, t);
   summary.status               = status;
+  summary.stop_reason          = stop_reason;
   summary.message              = message.empty() ? output.stop_reason() : message;
   const std::uint64_t checksum = state_checksum();
   if (output.writes_files())
@@ -364,7 +378,9 @@ std::map<std::string, double> Simulation<dim>::run()
   parts.ranks.barrier();
   // Every rank ends alike; main() tells this from an error on one rank only.
   AssertThrow(status != "interrupted", ExcRunInterrupted(message));
-  AssertThrow(status == "completed", ExcRunFailed(message));
+  AssertThrow(status == "completed" || status == "stopped", ExcRunFailed(message));
+  if (status == "stopped" && !message.empty())
+    output.console() << message << std::endl;
   timer.print_summary();
   output.report_end(wall, step_count, stepper.exchange_seconds());
   return summary.values;

@@ -2,6 +2,11 @@
 #include <lme_mpm/shape_functions/shape_function.h>
 #include <lme_mpm/solver/run_parameters.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <system_error>
+
 #include <cmath>
 #include <sstream>
 
@@ -97,7 +102,8 @@ void RunParameters<dim>::entries(EntryList &list)
            "transfers per step). Used with Particle update = xpic.");
   list.add("Maximum steps", max_steps, "0", Patterns::Integer(0),
            "Stop after this many steps (0: no limit), for a trial of a scene's "
-           "set-up; such a run ends 'aborted', as it did not reach the end time.");
+           "set-up; such a run ends with status 'stopped' (stop_reason 'Time/Maximum "
+           "steps') and exit code 0.");
   list.leave();
 
   list.enter("Shape functions");
@@ -153,6 +159,23 @@ void RunParameters<dim>::parse_parameters(ParameterHandler &prm)
   peak_force_set = input::trim(peak_force_set);
   AssertThrow(!input::trim(directory).empty(),
               ExcBadInput("Output/Directory", "must not be empty"));
+  {
+    // Nothing is created before every input is checked: here only the part of the
+    // path that exists already is looked at.
+    std::error_code ec;
+    std::filesystem::path existing = std::filesystem::absolute(directory, ec);
+    while (!existing.empty() && !std::filesystem::exists(existing, ec) &&
+           existing != existing.parent_path())
+      existing = existing.parent_path();
+    AssertThrow(std::filesystem::is_directory(existing, ec),
+                ExcBadInput("Output/Directory", "cannot create '" + directory + "': '" +
+                                                    existing.string() +
+                                                    "' is a file, not a directory"));
+    AssertThrow(::access(existing.c_str(), W_OK) == 0,
+                ExcBadInput("Output/Directory", "cannot create '" + directory + "': '" +
+                                                    existing.string() +
+                                                    "' is not writable"));
+  }
   if (dim == 3)
     thickness = 1.0;
   input::require_range(thickness, 0, 1e300, true, "Problem/Thickness");
@@ -170,7 +193,7 @@ void RunParameters<dim>::parse_parameters(ParameterHandler &prm)
 
 template <int dim>
 TimeStepping stable_time_step(const RunParameters<dim> &run, const double h_min,
-                              const double c_max)
+                              const double c_max, const std::string &wave_speed_entries)
 {
   TimeStepping ts;
   const double dt_wave = h_min / c_max;
@@ -197,7 +220,8 @@ TimeStepping stable_time_step(const RunParameters<dim> &run, const double h_min,
         << " m and the largest P-wave speed c_P = " << c_max
         << " m/s, the stable time step is " << ts.dt << " s";
     AssertThrow(std::isfinite(ts.dt) && ts.dt > 0,
-                ExcBadInput("Time/CFL (or Time/Time step)", msg.str()));
+                ExcBadInput(wave_speed_entries + " (with Time/CFL or Time/Time step)",
+                            msg.str()));
   }
   // Land exactly on the end time, in at least one step; the count is checked as a
   // double, before it is converted.
@@ -205,9 +229,12 @@ TimeStepping stable_time_step(const RunParameters<dim> &run, const double h_min,
   {
     std::ostringstream msg;
     msg << "End time " << run.end_time << " s at dt = " << ts.dt
-        << " s (from h_min = " << h_min << " m and the materials' c_P = " << c_max
-        << " m/s) needs " << steps << " steps, more than the 2e9 allowed";
-    AssertThrow(steps < 2e9, ExcBadInput("Time/End time", msg.str()));
+        << " s (from h_min = " << h_min << " m and c_P = " << c_max
+        << " m/s, the materials' P-wave speed) needs " << steps
+        << " steps, more than the 2e9 allowed: check the wave speed's entries, or the "
+           "grid's spacing, or Time/End time";
+    AssertThrow(steps < 2e9,
+                ExcBadInput(wave_speed_entries + " (with Time/End time)", msg.str()));
   }
   ts.n_steps = static_cast<unsigned int>(steps);
   ts.dt      = run.end_time / ts.n_steps;
@@ -216,6 +243,8 @@ TimeStepping stable_time_step(const RunParameters<dim> &run, const double h_min,
 
 template struct RunParameters<2>;
 template struct RunParameters<3>;
-template TimeStepping stable_time_step(const RunParameters<2> &, double, double);
-template TimeStepping stable_time_step(const RunParameters<3> &, double, double);
+template TimeStepping stable_time_step(const RunParameters<2> &, double, double,
+                                       const std::string &);
+template TimeStepping stable_time_step(const RunParameters<3> &, double, double,
+                                       const std::string &);
 } // namespace lme_mpm

@@ -9,6 +9,7 @@
 
 #include "test_helpers.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -25,7 +26,13 @@ struct BadInput
 };
 
 const std::vector<BadInput> bad_inputs = {
-    {{"Time/End tme=1"}, "Time/End tme': no such entry"},
+    {{"Time/End tme=1"}, "Time/End tme': no such entry (did you mean 'Time/End time'?)"},
+    {{"Time/CLF=0.5"}, "(did you mean 'Time/CFL'?)"},
+    {{"Output/End time=1"}, "(did you mean 'Time/End time'?)"},
+    {{"Shape functions/Type=lmee"}, "(did you mean 'lme'?); a name that a plug-in"},
+    {{"Body 1/Initial velocity/Function expression=q*x; 0"},
+     "'q' is not a known function, variable or constant (constants are defined in "
+     "'Body 1/Initial velocity/Function constants')"},
     {{"Tim/End time=1"}, "Tim/End time': no such entry"},
     {{"Time/Newmark gamma=0.3"}, "Time/Newmark gamma"},
     {{"Time/Newmark gamma=abc"}, "Time/Newmark gamma"},
@@ -68,6 +75,10 @@ const std::vector<BadInput> bad_inputs = {
     {{"Boundary conditions/Constraint 1/Components=w"}, "Components"},
     {{"Boundary conditions/Constraint 1/Components=z"}, "'z' does not exist in 2D"},
     {{"Boundary conditions/Constraint 1/Velocity/Function expression=0"}, "Velocity"},
+    // Another scene's entry would be read by nobody.
+    {{"Scene/brazilian/Loading velocity=0.02"},
+     "'Scene/brazilian/Loading velocity': belongs to the scene 'brazilian', but "
+     "'Scene/Type' is 'none'"},
     {{"Problem/Thickness=0"}, "Problem/Thickness"},
     {{"Problem/Body force=0"}, "Problem/Body force"},
     {{"Problem/Body force ramp time=-1"}, "Problem/Body force ramp time"},
@@ -98,8 +109,12 @@ const std::vector<BadInput> bad_inputs = {
     {{"Cracks/Polylines=0, 0.5, 0.2, x"}, "Cracks/Polylines"},
     // Each entry in range, what they give together not: the time step, the step count,
     // the grid's memory, particle masses, functions at t = 0.
-    {{"Material 1/Density=1e-300"}, "steps, more than the 2e9 allowed"},
-    {{"Material 1/linear elastic/Young's modulus=1e300"}, "the materials' c_P = "},
+    // The wave speed made the step useless: the material's entries are named.
+    {{"Material 1/Density=1e-300"},
+     "'Material 1/Density' and the entries of 'Material 1/linear elastic' (with "
+     "Time/End time)': End time"},
+    {{"Material 1/linear elastic/Young's modulus=1e300"},
+     "entries of 'Material 1/linear elastic' (with Time/End time)': End time 0.0126"},
     {{"Grid/Cell size=1e-9"}, "Grid/Cell size': a grid of"},
     {{"Grid/Step sizes x=1e12*1e-12"}, "Grid/Step sizes x': a grid of"},
     {{"Problem/Thickness=1e-300", "Material 1/Density=1e-300",
@@ -190,8 +205,69 @@ TEST(BadInput, MissingFileAndMisspelledEntryInFile)
   content.replace(content.find("set End time"), 12, "set End tme");
   std::ofstream(file) << content;
   const std::string msg = lme_mpm_test::run_error(file, {}, out);
-  EXPECT_NE(msg.find("End tme"), std::string::npos) << msg;
+  // The entry with its subsection, the line, and the declared name it is closest to.
+  EXPECT_NE(msg.find("'Time/End tme': no such entry (line "), std::string::npos) << msg;
+  EXPECT_NE(msg.find("(did you mean 'Time/End time'?)"), std::string::npos) << msg;
   EXPECT_FALSE(std::filesystem::exists(out));
+
+  // A misspelled subsection and a selection that is not one of its names.
+  content = text.str();
+  content.replace(content.find("subsection Time"), 15, "subsection Tme");
+  std::ofstream(file) << content;
+  const std::string sub = lme_mpm_test::run_error(file, {}, out);
+  EXPECT_NE(sub.find("'Tme': no such subsection (line "), std::string::npos) << sub;
+  EXPECT_NE(sub.find("(did you mean 'Time'?)"), std::string::npos) << sub;
+  content         = text.str();
+  const auto type = content.find("set Type", content.find("subsection Shape functions"));
+  ASSERT_NE(type, std::string::npos);
+  content.replace(type, content.find('\n', type) - type, "set Type = bsplin");
+  std::ofstream(file) << content;
+  const std::string selection = lme_mpm_test::run_error(file, {}, out);
+  EXPECT_NE(selection.find("'Shape functions/Type': 'bsplin' is not allowed (line "),
+            std::string::npos)
+      << selection;
+  EXPECT_NE(selection.find("(did you mean 'bspline'?)"), std::string::npos) << selection;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(BadInput, OutputDirectoryThatCannotBeMadeIsNamed)
+{
+  for (const auto &[directory, expected] :
+       std::vector<std::pair<std::string, std::string>>{
+           {LME_MPM_SOURCE_DIR "/README.md/out", "is a file, not a directory"},
+           {"/proc/lme_mpm_output/run", "'Output/Directory': cannot create"}})
+  {
+    std::string msg;
+    try
+    {
+      std::ostringstream quiet;
+      lme_mpm::run_parameter_file(lme_mpm_test::scene("vibrating_bar.prm"),
+                                  {"Output/Directory=" + directory, "Output/Verbosity=0"},
+                                  quiet);
+    }
+    catch (const std::exception &e)
+    {
+      msg = lme_mpm::input::concise_message(e);
+    }
+    EXPECT_NE(msg.find("'Output/Directory'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(expected), std::string::npos) << msg;
+    EXPECT_FALSE(std::filesystem::exists(directory));
+  }
+}
+
+TEST(BadInput, ExpressionErrorIsOneLine)
+{
+  // muParser's own report is not printed beside the message.
+  const std::string log = lme_mpm_test::scratch_path("expression_error.log");
+  const std::string cmd =
+      std::string(LME_MPM_BINARY) + " " + lme_mpm_test::scene("vibrating_bar.prm") +
+      " --set \"Body 1/Initial velocity/Function expression=q*x; 0\" --set "
+      "\"Output/Directory=" +
+      lme_mpm_test::scratch("expression_error") + "\" > " + log + " 2>&1";
+  EXPECT_EQ(WEXITSTATUS(std::system(cmd.c_str())), 1);
+  const std::string text = lme_mpm_test::file_text(log);
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
+  EXPECT_NE(text.find("'q' is not a known function"), std::string::npos) << text;
 }
 
 TEST(BadInput, CommandLineExitCodes)
@@ -229,15 +305,25 @@ TEST(RunGuards, PrescribedVelocityThatTurnsInfiniteNamesItsEntry)
       std::string::npos);
 }
 
-TEST(RunGuards, StepLimitEndsAbortedNotCompleted)
+TEST(RunGuards, StepLimitEndsStoppedNotFailed)
 {
+  // A trial run cut short on purpose: status 'stopped' naming the limit, exit code 0.
   const std::string out = lme_mpm_test::scratch("step_limit");
-  const std::string msg = lme_mpm_test::run_error(
-      lme_mpm_test::scene("vibrating_bar.prm"), {"Time/Maximum steps=5"}, out);
-  EXPECT_NE(msg.find("Stopped after 5 steps"), std::string::npos) << msg;
-  const std::string summary = lme_mpm_test::file_text(out + "/summary.json");
-  EXPECT_NE(summary.find("\"status\": \"aborted\""), std::string::npos) << summary;
-  EXPECT_NE(summary.find("\"steps\": 5"), std::string::npos) << summary;
+  EXPECT_EQ(lme_mpm_test::run_error(lme_mpm_test::scene("vibrating_bar.prm"),
+                                    {"Time/Maximum steps=5"}, out),
+            "");
+  const auto summary =
+      nlohmann::json::parse(lme_mpm_test::file_text(out + "/summary.json"));
+  EXPECT_EQ(summary["status"], "stopped");
+  EXPECT_EQ(summary["stop_reason"], "Time/Maximum steps");
+  EXPECT_EQ(summary["steps"], 5);
+  EXPECT_NE(summary["message"].get<std::string>().find("Stopped after 5 steps"),
+            std::string::npos);
+  const std::string bin = LME_MPM_BINARY;
+  const std::string cmd = bin + " " + lme_mpm_test::scene("vibrating_bar.prm") +
+                          " --set \"Time/Maximum steps=5\" --set \"Output/Directory=" +
+                          lme_mpm_test::scratch("step_limit_cli") + "\" > /dev/null 2>&1";
+  EXPECT_EQ(WEXITSTATUS(std::system(cmd.c_str())), 0);
 }
 
 TEST(RunGuards, UnstableRunStopsWithDiagnosticAndKeepsItsOutput)

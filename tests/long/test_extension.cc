@@ -68,7 +68,11 @@ TEST(Extension, OutOfTreePluginsBuildAgainstTheInstalledPackage)
         "/lib/cmake/lme_mpm/lme_mpmConfigVersion.cmake",
         "/include/lme_mpm/fracture/softening_law.h", "/share/lme_mpm/prm/tension_bar.prm",
         "/share/doc/lme_mpm/extending.md",
-        "/share/doc/lme_mpm/examples/custom_plugins/CMakeLists.txt"})
+        "/share/doc/lme_mpm/examples/custom_plugins/CMakeLists.txt",
+        "/share/lme_mpm/scripts/plot_brazilian.py",
+        "/share/lme_mpm/scripts/plot_semicircular_bending.py",
+        "/share/lme_mpm/scripts/plot_drop_weight.py",
+        "/share/lme_mpm/scripts/scene_plots.py"})
     EXPECT_TRUE(std::filesystem::exists(prefix + installed)) << installed;
 
   // The example as installed, found through the prefix alone.
@@ -102,6 +106,25 @@ TEST(Extension, OutOfTreePluginsBuildAgainstTheInstalledPackage)
             0);
   EXPECT_NE(lme_mpm_test::file_text(root + "/refused.log").find("power"),
             std::string::npos);
+  // The law's own entry: another exponent still dissipates G_F; a bad one is refused
+  // by its full name.
+  const std::string cubic_out = root + "/cubic";
+  ASSERT_EQ(sh(prefix + "/bin/lme-mpm " + scene +
+               " --set 'Material 1/Fracture/power/Exponent=3' --set "
+               "'Material 2/Fracture/power/Exponent=3' --set 'Output/Directory=" +
+               cubic_out + "' > " + root + "/cubic.log 2>&1"),
+            0)
+      << lme_mpm_test::file_text(root + "/cubic.log");
+  EXPECT_NEAR(dissipated_energy(cubic_out) / expected_dissipation, 1.0, 0.05);
+  EXPECT_NE(dissipated_energy(cubic_out), dissipated_energy(stock_out));
+  ASSERT_NE(sh(prefix + "/bin/lme-mpm " + scene +
+               " --set 'Material 1/Fracture/power/Exponent=0.5' > " + root +
+               "/exponent.log 2>&1"),
+            0);
+  EXPECT_NE(lme_mpm_test::file_text(root + "/exponent.log")
+                .find("Material 1/Fracture/power/Exponent"),
+            std::string::npos)
+      << lme_mpm_test::file_text(root + "/exponent.log");
 
   // The user's own program, with the plug-ins compiled in.
   const std::string own_out = root + "/own";

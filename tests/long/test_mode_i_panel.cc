@@ -51,7 +51,7 @@ TEST(ModeIPanel, ExplicitCrackUntiesTheNotchFaces)
   // The notch is narrower than the supports: with one velocity field the nodes the
   // faces share tie them, and the panel is nearly as stiff as one without a notch
   // (1.19); the explicit crack gives the finite-element stiffness of the notched
-  // panel, 0.990 (reference/README.md section 2).
+  // panel, 0.990 (doc/reference_data.md section 2).
   const auto with    = coarse_panel("panel_crack", 12);
   const auto without = coarse_panel("panel_tied", 12, {"Cracks/Polylines="});
   EXPECT_NEAR(with.stiffness, 0.990, 0.03 * 0.990);

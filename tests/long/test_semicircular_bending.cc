@@ -45,7 +45,7 @@ TEST(SemicircularBending, VerticalNotchCrackRunsUpTheSymmetryLine)
   // Symmetry: the two supports carry the same load.
   EXPECT_NEAR(r.at("peak_contact_force_left"), r.at("peak_contact_force_right"),
               0.01 * r.at("peak_contact_force_right"));
-  // The peak: Molinos et al. simulated 176 N at 2 mm/s (reference/README.md section
+  // The peak: Molinos et al. simulated 176 N at 2 mm/s (doc/reference_data.md section
   // 4); the scene gave 173 N at that rate and gives 175 N at this one. Without the notch
   // crack the grid ties the notch faces together and the peak is 429 N.
   EXPECT_NEAR(r.at("peak_force"), 176, 0.1 * 176);

@@ -7,6 +7,7 @@
 #include <deal.II/base/point.h>
 
 #include <exception>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,27 @@ bool depends_on_space_or_time(const std::string &expression);
 
 /// "Kind N" with N counted from 1, the name of a repeated subsection.
 std::string subsection_name(const std::string &kind, unsigned int i);
+
+/// "Subsection/.../Entry" -> value of every 'set' line of a parameter-file text.
+std::map<std::string, std::string> entry_values(const std::string &text);
+
+/// Every entry @p prm declares, as "Subsection/.../Entry" paths.
+std::vector<std::string> declared_entries(const dealii::ParameterHandler &prm);
+
+/**
+ * " (did you mean 'X'?)" for the candidate closest to @p wanted (edit distance,
+ * ignoring case) when it is close enough to be a misspelling, "" otherwise. A path
+ * is also compared by its last part alone, so an entry given in the wrong subsection
+ * finds its right one.
+ */
+std::string did_you_mean(const std::string &wanted,
+                         const std::vector<std::string> &candidates);
+
+/**
+ * What to add to a deal.II "does not match the pattern" message about @p value: for a
+ * selection, the closest of its names and where plug-in names come from.
+ */
+std::string selection_hint(const std::string &value, const std::string &message);
 } // namespace input
 } // namespace lme_mpm
 

@@ -258,6 +258,12 @@ bool register_plugin_for_dims(const std::string &name, const std::string &descri
 }
 } // namespace lme_mpm
 
+/// A name of its own for each registration: the class may be given with its namespace
+/// (my_plugins::PowerLaw), which cannot be part of a variable's name.
+#define LME_MPM_CONCATENATE_(A, B) A##B
+#define LME_MPM_CONCATENATE(A, B) LME_MPM_CONCATENATE_(A, B)
+#define LME_MPM_UNIQUE_NAME(PREFIX) LME_MPM_CONCATENATE(PREFIX, __COUNTER__)
+
 /**
  * The core of the LME_MPM_REGISTER_* macros of a registry that is not templated on
  * dim: registers class CLASS in REGISTRY from a static initialiser. KIND keeps the
@@ -266,7 +272,7 @@ bool register_plugin_for_dims(const std::string &name, const std::string &descri
 #define LME_MPM_REGISTER_PLUGIN(REGISTRY, KIND, CLASS, NAME, DESCRIPTION, WHERE)         \
   namespace                                                                              \
   {                                                                                      \
-  const bool lme_mpm_registered_##KIND##_##CLASS =                                       \
+  const bool LME_MPM_UNIQUE_NAME(lme_mpm_registered_##KIND##_) =                         \
       ::lme_mpm::register_plugin<REGISTRY, CLASS>(NAME, DESCRIPTION, WHERE);             \
   }
 
@@ -279,7 +285,7 @@ bool register_plugin_for_dims(const std::string &name, const std::string &descri
                                          WHERE)                                          \
   namespace                                                                              \
   {                                                                                      \
-  const bool lme_mpm_registered_##KIND##_##CLASS =                                       \
+  const bool LME_MPM_UNIQUE_NAME(lme_mpm_registered_##KIND##_) =                         \
       ::lme_mpm::register_plugin_for_dims<REGISTRY, CLASS>(NAME, DESCRIPTION, WHERE);    \
   }
 

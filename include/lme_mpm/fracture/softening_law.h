@@ -38,9 +38,15 @@ public:
 using SofteningLawRegistry = Registry<SofteningLaw, SofteningContext>;
 } // namespace lme_mpm
 
-/// Registers softening law CLASS (constructed from const SofteningContext &) as NAME.
+/**
+ * Registers softening law CLASS as NAME. CLASS is built from (const SofteningContext
+ * &), or from (ParameterHandler &, const SofteningContext &) when it has entries of
+ * its own: those it declares with a static declare_parameters(ParameterHandler &) (or
+ * an Entries struct) go into the subsection 'Material N/Fracture/NAME'. CLASS may carry
+ * its namespace.
+ */
 #define LME_MPM_REGISTER_SOFTENING_LAW(CLASS, NAME, DESCRIPTION)                         \
   LME_MPM_REGISTER_PLUGIN(::lme_mpm::SofteningLawRegistry, softening_law, CLASS, NAME,   \
-                          DESCRIPTION, ::lme_mpm::PluginEntries::none)
+                          DESCRIPTION, ::lme_mpm::PluginEntries::own_subsection)
 
 #endif

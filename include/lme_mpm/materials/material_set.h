@@ -6,6 +6,7 @@
 #include <lme_mpm/materials/material.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace lme_mpm
@@ -28,6 +29,9 @@ public:
   const Material<dim> &operator[](const unsigned int m) const { return *models[m]; }
   /// The fastest P-wave speed of all materials (m/s).
   double max_wave_speed() const;
+  /// The entries that set max_wave_speed(), for messages: "'Material 2/Density' and
+  /// the entries of 'Material 2/linear elastic'".
+  std::string wave_speed_entries() const;
 
   /// Updates the stress of [begin, end), one call per material.
   void update_stress(ParticleStore<dim> &particles, const std::size_t begin,

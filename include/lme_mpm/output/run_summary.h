@@ -16,7 +16,14 @@ namespace lme_mpm
 /// What summary.json reports: how the run ended and its values by name.
 struct RunSummary
 {
+  /**
+   * How the run ended: "completed" (reached its end time), "stopped" (ended on purpose
+   * before it: @p stop_reason says by what), "aborted" (unstable or failed, output
+   * kept) or "interrupted" (SIGINT / SIGTERM). README.md gives each one's exit code.
+   */
   std::string status = "completed";
+  /// For "stopped": "scene" (the scene's own stop rule) or "Time/Maximum steps".
+  std::string stop_reason;
   std::string message;
   std::map<std::string, double> values;
   /// How the run was started (summary.json's "run" object).

@@ -87,11 +87,13 @@ struct TimeStepping
 
 /**
  * The time step from the CFL number or the fixed step, checked against the stability
- * limit Maximum CFL * h_min / c_P; throws ExcBadInput naming the entry.
+ * limit Maximum CFL * h_min / c_P; throws ExcBadInput naming the entry, and
+ * @p wave_speed_entries, the entries that set c_P, where c_P makes the step useless.
  */
 template <int dim>
 TimeStepping stable_time_step(const RunParameters<dim> &run, double h_min,
-                              double max_wave_speed);
+                              double max_wave_speed,
+                              const std::string &wave_speed_entries = "the materials");
 } // namespace lme_mpm
 
 #endif
