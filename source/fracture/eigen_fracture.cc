@@ -168,12 +168,15 @@ public:
         chi_new = 1 - law->traction_ratio(std::max(0.0, strain_beyond) * h);
       else
       {
-        // The cohesive law starts at the particle's own stress at onset s0 (the
-        // neighbourhood's mean reached f_t, its own need not have): peak s0, openings
-        // scaled by f_t / s0, so that the area under it, the energy per unit crack
-        // area, stays G_F whatever s0 is.
-        const double s0 = P.onset_stress[p], r = s0 / f_t;
-        const double M = s0 / P.onset_strain[p];
+        // The cohesive law starts at the particle's own stress at onset s0 when that is
+        // below f_t (the neighbourhood's mean reached f_t, its own need not have): peak
+        // s0, openings scaled by f_t / s0, so that the area under it, the energy per
+        // unit crack area, stays G_F. A particle above f_t at onset (beside a notch
+        // tip, s0 reaches 3 f_t) drops to f_t at once, the drop's energy booked by the
+        // secant damage, and then follows the law itself: a law scaled up to s0 would
+        // be (s0 / f_t)^2 times steeper, beyond what the band can follow.
+        const double s0 = law_peak(P.onset_stress[p]), r = s0 / f_t;
+        const double M = P.onset_stress[p] / P.onset_strain[p];
         if (1 / h <= s0 * r * law->max_slope() / M)
         {
           chi_new            = 1; // beyond the snap-back limit: breaks at once
@@ -231,7 +234,7 @@ private:
                      const double eps_I, const double sig_I, const double eps2,
                      unsigned long &snapped) const
   {
-    const double s0 = P.onset_stress[p], r = s0 / f_t, w_end = w_c / r;
+    const double s0 = law_peak(P.onset_stress[p]), r = s0 / f_t, w_end = w_c / r;
     if (!(eps_I > 0 && sig_I > 0) || !nb.has_row(p))
       return 0;
     const Tensor<1, dim> n = eigenvectors(P.strain[p])[0].second;
@@ -324,10 +327,10 @@ private:
       if (F.crack_opening[*q] <= 0)
         continue;
       // The band shares one opening w, not one fraction of a critical opening: q's
-      // fraction is of its own w_end = w_c f_t / s0_q, p's of w_c f_t / s0_p, and near
-      // a notch tip s0 / f_t ranges from 1 to 3, so q's fraction taken as p's would
-      // break p at a third of its critical opening.
-      const double shared = F.crack_opening[*q] * P.onset_stress[p] / P.onset_stress[*q];
+      // fraction is of its own w_end = w_c f_t / s0_q, p's of w_c f_t / s0_p (s0 the
+      // law's peak, law_peak()), which differ where particles start below f_t.
+      const double shared = F.crack_opening[*q] * law_peak(P.onset_stress[p]) /
+                            law_peak(P.onset_stress[*q]);
       if (shared <= band)
         continue;
       if (!have_normal) // only once a neighbour is more open than p
@@ -363,6 +366,10 @@ private:
     }
     return 0.5 * (lo + hi);
   }
+
+  /// The peak of a particle's cohesive law from its stress at onset: that stress,
+  /// but no more than f_t (see update()).
+  double law_peak(const double onset_stress) const { return std::min(onset_stress, f_t); }
 
   double grid_spacing, thickness, C_eps = 0, f_t = 0, w_c = 0, band_width = 0;
   /// How far either side of a particle its crack band's opening is summed, in cells.

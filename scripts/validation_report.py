@@ -1,0 +1,234 @@
+#!/usr/bin/env python3
+"""Runs every scene of prm/ with its shipped settings (and the semicircular bending
+test at its three notch angles) and writes the measured numbers beside their reference
+values into doc/validation.md, between the markers
+
+    <!-- validation_report.py: SCENE -->  ...  <!-- validation_report.py: end -->
+
+so that the page's numbers are those of the last regeneration, not typed in. Each block
+names the command that reproduces it, the wall time and the build's git revision.
+
+    /usr/bin/python3 scripts/validation_report.py --build build [--out output/validation]
+        [--only brazilian semicircular_bending ...] [--reuse] [--threads 2]
+
+--reuse reads the runs already in --out instead of running them again (to redo the
+page after editing this script). The whole set takes about 45 minutes on two cores
+(the semicircular bending test at 2 mm/s is 10 minutes per angle).
+"""
+import argparse
+import csv
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+
+# Reference values (doc/reference_data.md has their sources).
+GRIFFITH_PEAK, GRIFFITH_OPENING = 0.0129, 0.00651
+SCB_PAPER = {0: 176.0, 30: 220.0, 60: 300.0}
+DROP_PAPER_IMPACT, DROP_PAPER_REACTION = 105.6e3, 59.5e3
+
+
+def run_case(build, out, name, prm, sets, threads, reuse):
+    directory = os.path.join(out, name)
+    command = [os.path.abspath(os.path.join(build, "lme-mpm")), prm] + \
+        sum([["--set", s] for s in sets], [])
+    # As a user types it, from the repository's root with the build in build/.
+    shown = " ".join(["./build/lme-mpm", prm] + ['--set "%s"' % s for s in sets])
+    if not (reuse and os.path.exists(os.path.join(directory, "summary.json"))):
+        start = time.time()
+        subprocess.run(command + ["--threads", str(threads), "--set",
+                                  "Output/Directory=" + directory, "--set",
+                                  "Output/Verbosity=0", "--set",
+                                  "Output/Write particle files=false"],
+                       check=False, stdout=subprocess.DEVNULL)
+        print(f"{name}: {time.time() - start:.0f} s", file=sys.stderr)
+    with open(os.path.join(directory, "summary.json")) as f:
+        summary = json.load(f)
+    rows = []
+    history = os.path.join(directory, "history.csv")
+    if os.path.exists(history):
+        with open(history) as f:
+            rows = list(csv.DictReader(f))
+    return summary, rows, shown
+
+
+def fmt(x, digits=4):
+    if x is None:
+        return "-"
+    if isinstance(x, str):
+        return x
+    return f"{x:.{digits}g}"
+
+
+def block(rows, summary, shown):
+    """A Markdown table of (quantity, reference, measured) rows and the run's facts."""
+    lines = ["| quantity | reference | this build |", "|---|---|---|"]
+    for quantity, reference, measured in rows:
+        lines.append(f"| {quantity} | {reference} | {measured} |")
+    lines.append(
+        f"| status, `max_energy_drift` | | {summary.get('status')}, "
+        f"{fmt(summary.get('max_energy_drift'), 3)} |")
+    lines.append("")
+    lines.append(f"`{shown}` ({summary.get('steps')} steps, "
+                 f"{summary.get('wall_seconds', 0):.0f} s wall on "
+                 f"{summary.get('threads')} threads)")
+    return "\n".join(lines)
+
+
+def column_max(rows, column):
+    values = [abs(float(r[column])) for r in rows if column in r and r[column] != ""]
+    return max(values) if values else None
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--build", default="build")
+    parser.add_argument("--out", default="output/validation")
+    parser.add_argument("--only", nargs="*")
+    parser.add_argument("--reuse", action="store_true")
+    parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--page", default="doc/validation.md")
+    args = parser.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+
+    def case(name, prm, sets=()):
+        return run_case(args.build, args.out, name, prm, list(sets), args.threads,
+                        args.reuse)
+
+    blocks = {}
+
+    def wanted(scene):
+        return not args.only or scene in args.only
+
+    if wanted("vibrating_bar"):
+        s, _, cmd = case("vibrating_bar", "prm/vibrating_bar.prm")
+        blocks["vibrating_bar"] = block(
+            [("largest displacement error (L2 over the bar, relative)", "0 (exact solution)",
+              fmt(s.get("max_error_displacement_l2"), 3)),
+             ("largest velocity error (L2, relative)", "0 (exact solution)",
+              fmt(s.get("max_error_velocity_l2"), 3))], s, cmd)
+    if wanted("vibrating_bar_3d"):
+        s, _, cmd = case("vibrating_bar_3d", "prm/vibrating_bar_3d.prm")
+        blocks["vibrating_bar_3d"] = block(
+            [("largest displacement error (L2, relative)", "0 (exact solution)",
+              fmt(s.get("max_error_displacement_l2"), 3))], s, cmd)
+    if wanted("two_disk_collision"):
+        s, _, cmd = case("two_disk_collision", "prm/two_disk_collision.prm")
+        blocks["two_disk_collision"] = block(
+            [("total energy drift", "0 (conserved)", fmt(s.get("max_energy_drift"), 3))],
+            s, cmd)
+    if wanted("tension_bar"):
+        s, rows, cmd = case("tension_bar", "prm/tension_bar.prm")
+        area, G_F, f_t = 0.005 * 0.005, 50.0, 3e6
+        peak = column_max(rows, "force_right_x")
+        blocks["tension_bar"] = block(
+            [("dissipated energy / (G_F A)", "1", fmt(s.get("dissipated_energy", 0) /
+                                                       (G_F * area))),
+             ("peak stress / f_t of the weak zone", "1",
+              fmt(peak / area / f_t if peak else None)),
+             ("snapped-back particles", "0",
+              fmt(s.get("eigensoftening_snap_back_particles")))], s, cmd)
+    if wanted("inclined_tension_bar"):
+        s, _, cmd = case("inclined_tension_bar_30", "prm/inclined_tension_bar.prm",
+                         ["Scene/inclined tension bar/Angle=30"])
+        blocks["inclined_tension_bar"] = block(
+            [("`fracture_energy_ratio` at 30 degrees", "1",
+              fmt(s.get("fracture_energy_ratio"))),
+             ("`peak_stress` / f_t of the weak zone", "1",
+              fmt(s.get("peak_stress", 0) / 2.7e6))], s, cmd)
+    if wanted("mode_i_panel"):
+        s, _, cmd = case("mode_i_panel", "prm/mode_i_panel.prm")
+        blocks["mode_i_panel"] = block(
+            [("peak reaction", f"{GRIFFITH_PEAK} (Griffith)", fmt(s.get("peak_force"))),
+             ("opening at the peak", f"{GRIFFITH_OPENING} (Griffith)",
+              fmt(s.get("displacement_at_peak")))], s, cmd)
+    if wanted("brazilian"):
+        s, _, cmd = case("brazilian", "prm/brazilian.prm")
+        blocks["brazilian"] = block(
+            [("splitting strength / f_t", "about 1 (Rocco et al. 1999: within 25 %)",
+              fmt(s.get("splitting_strength", 0) / 5.4e6)),
+             ("peak load (N per m of thickness)", "-", fmt(s.get("peak_force"))),
+             ("damage within D/10 of the loaded diameter", "most of it",
+              fmt(s.get("damage_share_near_loaded_diameter"), 3)),
+             ("damaged band's height / D", "-",
+              fmt(s.get("softened_band_height_over_diameter"), 3)),
+             ("dissipated energy / (G_F D t), one crack through the whole diameter",
+              "at most the band height / D (one crack dissipating G_F)",
+              fmt(s.get("dissipated_energy", 0) /
+                                               (141 * 0.15 * 1.0), 3)),
+             ("snapped-back particles", "0",
+              fmt(s.get("eigensoftening_snap_back_particles")))], s, cmd)
+    if wanted("semicircular_bending"):
+        rows_all, shown, summaries = [], [], []
+        for angle in (0, 30, 60):
+            s, _, cmd = case(f"semicircular_bending_{angle}", "prm/semicircular_bending.prm",
+                             [f"Scene/semicircular bending/Notch angle={angle}"])
+            summaries.append(s)
+            shown.append(cmd)
+            rows_all += [
+                (f"{angle} degrees: peak load (N)",
+                 f"{SCB_PAPER[angle]:g} (Molinos et al. 2021)", fmt(s.get("peak_force"))),
+                (f"{angle} degrees: `fracture_energy_ratio`, snapped back, drift", "1, 0, 0",
+                 f"{fmt(s.get('fracture_energy_ratio'), 3)}, "
+                 f"{fmt(s.get('eigensoftening_snap_back_particles'))}, "
+                 f"{fmt(s.get('max_energy_drift'), 3)}")]
+        lines = ["| quantity | reference | this build |", "|---|---|---|"]
+        lines += [f"| {q} | {r} | {m} |" for q, r, m in rows_all]
+        lines.append("")
+        for cmd, s in zip(shown, summaries):
+            lines.append(f"`{cmd}` ({s.get('status')}, {s.get('steps')} steps, "
+                         f"{s.get('wall_seconds', 0):.0f} s wall on {s.get('threads')} "
+                         "threads)  ")
+        blocks["semicircular_bending"] = "\n".join(lines).rstrip()
+    for variant in ("drop_weight", "drop_weight_single_field"):
+        if wanted(variant):
+            s, _, cmd = case(variant, f"prm/{variant}.prm")
+            blocks[variant] = block(
+                [("peak impact force (N)", f"{DROP_PAPER_IMPACT:g} (Molinos et al. 2021)",
+                  fmt(s.get("peak_impact_force"))),
+                 ("its time after first contact (s)", "1e-4 after the force starts",
+                  fmt(s.get("time_of_peak_impact_force"))),
+                 ("peak summed support reaction (N)", f"{DROP_PAPER_REACTION:g}",
+                  fmt(s.get("peak_reaction_force"))),
+                 ("its time after first contact (s)", "-",
+                  fmt(s.get("time_of_peak_reaction_force")))], s, cmd)
+    if wanted("sliding_block"):
+        s, _, cmd = case("sliding_block", "prm/sliding_block.prm")
+        blocks["sliding_block"] = block(
+            [("sliding distance (m)", f"{fmt(s.get('sliding_distance_exact'))} (inclined "
+              "plane, exact)", fmt(s.get("sliding_distance")))], s, cmd)
+    if wanted("disc_drop"):
+        s, _, cmd = case("disc_drop", "prm/disc_drop.prm")
+        blocks["disc_drop"] = block(
+            [("peak contact force on the slab (N)", "- (no Hertz estimate yet)",
+              fmt(s.get("peak_contact_force_slab")))], s, cmd)
+
+    revision = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
+                              text=True).stdout.strip()
+    # Changes to the code not yet committed are named: the runs did not come from HEAD.
+    if subprocess.run(["git", "status", "--porcelain", "source", "include"],
+                      capture_output=True, text=True).stdout.strip():
+        revision += " with local changes to the code"
+    with open(args.page) as f:
+        page = f.read()
+    missing = []
+    for scene, text in blocks.items():
+        pattern = re.compile(r"(<!-- validation_report.py: %s -->\n).*?(<!-- "
+                             r"validation_report.py: end -->)" % re.escape(scene), re.S)
+        if not pattern.search(page):
+            missing.append(scene)
+            continue
+        stamp = f"Generated by `scripts/validation_report.py` at revision {revision}:\n\n"
+        page = pattern.sub(lambda m: m.group(1) + stamp + text + "\n" + m.group(2), page)
+    with open(args.page, "w") as f:
+        f.write(page)
+    if missing:
+        print("no markers in the page for: " + ", ".join(missing), file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
