@@ -75,13 +75,14 @@ private:
   std::unique_ptr<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
   MPI_Comm errors = MPI_COMM_NULL;
 };
-} // namespace
-
-int main(int argc, char **argv)
+/// The program's options (shown by --help) and the hidden positional FILE.
+struct CommandLine
 {
-  try
+  po::options_description options{"Usage: lme-mpm FILE.prm [options]\nOptions"};
+  po::variables_map vm;
+
+  CommandLine()
   {
-    po::options_description options("Usage: lme-mpm FILE.prm [options]\nOptions");
     options.add_options()("help,h", "print this help")(
         "set,s", po::value<std::vector<std::string>>()->composing(),
         "override an entry: --set \"Subsection/Entry=value\" (repeatable)")(
@@ -93,14 +94,16 @@ int main(int argc, char **argv)
         "write the documented parameter file to standard output: the defaults, or with "
         "FILE (and --set) every entry of that run with the values it would read")(
         "version", "print the version and the git revision of the build");
-    po::options_description hidden;
+  }
+
+  /// Reads argv; false (after a message) on a malformed command line.
+  bool parse(int argc, char **argv)
+  {
+    po::options_description hidden, all;
     hidden.add_options()("file", po::value<std::string>(), "parameter file");
-    po::options_description all;
     all.add(options).add(hidden);
     po::positional_options_description positional;
     positional.add("file", 1);
-
-    po::variables_map vm;
     try
     {
       po::store(
@@ -111,41 +114,126 @@ int main(int argc, char **argv)
     catch (const po::error &e)
     {
       std::cerr << "lme-mpm: " << e.what() << "\n" << options << std::endl;
-      return 2;
+      return false;
     }
-    if (vm.count("help"))
-    {
-      std::cout << options << std::endl;
-      return 0;
-    }
-    if (vm.count("version"))
-    {
-      std::cout << lme_mpm::version_line() << std::endl;
-      return 0;
-    }
-    const std::vector<std::string> overrides =
-        vm.count("set") ? vm["set"].as<std::vector<std::string>>()
-                        : std::vector<std::string>();
-    if (vm.count("print-parameters"))
-    {
-      if (vm.count("file"))
-        lme_mpm::print_parameters(vm["file"].as<std::string>(), overrides, std::cout);
-      else
-        lme_mpm::print_default_parameters(std::cout);
-      return 0;
-    }
-    if (!vm.count("file"))
-    {
-      std::cerr << "lme-mpm: no parameter file given\n" << options << std::endl;
-      return 2;
-    }
+    return true;
+  }
 
+  std::string file() const
+  {
+    return vm.count("file") ? vm["file"].as<std::string>() : "";
+  }
+  std::vector<std::string> overrides() const
+  {
+    return vm.count("set") ? vm["set"].as<std::vector<std::string>>()
+                           : std::vector<std::string>();
+  }
+};
+
+/**
+ * The requests answered without a run (--help, --version, --print-parameters): their
+ * exit code, or -1 when the command line asks for a run.
+ */
+int answer_without_run(const CommandLine &cl)
+{
+  if (cl.vm.count("help"))
+  {
+    std::cout << cl.options << std::endl;
+    return 0;
+  }
+  if (cl.vm.count("version"))
+  {
+    std::cout << lme_mpm::version_line() << std::endl;
+    return 0;
+  }
+  if (cl.vm.count("print-parameters"))
+  {
+    if (cl.vm.count("file"))
+      lme_mpm::print_parameters(cl.file(), cl.overrides(), std::cout);
+    else
+      lme_mpm::print_default_parameters(std::cout);
+    return 0;
+  }
+  if (!cl.vm.count("file"))
+  {
+    std::cerr << "lme-mpm: no parameter file given\n" << cl.options << std::endl;
+    return 2;
+  }
+  return -1;
+}
+
+bool is_rank_zero()
+{
+  return dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+}
+
+bool several_ranks()
+{
+  return dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1;
+}
+
+/**
+ * Runs the parameter file on this rank and turns how it ended into the exit code:
+ * interrupted 128 + the signal, failed or bad input 1 with one message. An error that
+ * reached some ranks only (the others wait in a collective call) stops them all.
+ */
+int run(const CommandLine &cl, const MpiSession &mpi, const std::string &command_line)
+{
+  lme_mpm::set_command_line(command_line);
+  lme_mpm::interrupt::install();
+  try
+  {
+    lme_mpm::run_parameter_file(cl.file(), cl.overrides(), std::cout,
+                                cl.vm.count("resume") ? cl.vm["resume"].as<std::string>()
+                                                      : "");
+    return 0;
+  }
+  catch (const lme_mpm::ExcRunInterrupted &e)
+  {
+    // The shell's convention for a process ended by a signal: 128 + its number.
+    if (is_rank_zero())
+      std::cerr << "lme-mpm: " << lme_mpm::input::concise_message(e) << std::endl;
+    return 128 + lme_mpm::interrupt::received();
+  }
+  catch (const lme_mpm::ExcRunFailed &e)
+  {
+    // Every rank ended the run together, output written: one report, no abort.
+    if (is_rank_zero())
+      std::cerr << "lme-mpm: error: " << lme_mpm::input::concise_message(e) << std::endl;
+    return 1;
+  }
+  catch (const std::exception &e)
+  {
+    if (several_ranks() && !mpi.all_ranks_failed(5.0))
+    {
+      // The output written so far stays.
+      std::cerr << "lme-mpm: error on rank "
+                << dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) << ": "
+                << lme_mpm::input::concise_message(e) << std::endl;
+      MPI_Abort(MPI_COMM_WORLD, 1);
+    }
+    if (is_rank_zero())
+      std::cerr << "lme-mpm: error: " << lme_mpm::input::concise_message(e) << std::endl;
+    return 1;
+  }
+}
+} // namespace
+
+int main(int argc, char **argv)
+{
+  try
+  {
+    CommandLine cl;
+    if (!cl.parse(argc, argv))
+      return 2;
+    if (const int code = answer_without_run(cl); code >= 0)
+      return code;
     // MPI ranks split the grid (mpirun -np N); TBB threads work inside each rank and
     // keep all cores unless --threads caps them.
     const MpiSession mpi(argc, argv);
-    if (vm.count("threads"))
+    if (cl.vm.count("threads"))
     {
-      const unsigned int n = vm["threads"].as<unsigned int>();
+      const unsigned int n = cl.vm["threads"].as<unsigned int>();
       if (n == 0)
       {
         std::cerr << "lme-mpm: --threads must be at least 1" << std::endl;
@@ -156,53 +244,7 @@ int main(int argc, char **argv)
     std::string command_line;
     for (int i = 0; i < argc; ++i)
       command_line += (i ? " " : "") + std::string(argv[i]);
-    lme_mpm::set_command_line(command_line);
-    lme_mpm::interrupt::install();
-    try
-    {
-      lme_mpm::run_parameter_file(vm["file"].as<std::string>(), overrides, std::cout,
-                                  vm.count("resume") ? vm["resume"].as<std::string>()
-                                                     : "");
-    }
-    catch (const lme_mpm::ExcRunInterrupted &e)
-    {
-      // The shell's convention for a process ended by a signal: 128 + its number.
-      if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-        std::cerr << "lme-mpm: " << lme_mpm::input::concise_message(e) << std::endl;
-      return 128 + lme_mpm::interrupt::received();
-    }
-    catch (const lme_mpm::ExcRunFailed &e)
-    {
-      // Every rank ended the run together, output written: one report, no abort.
-      if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
-      {
-        if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-          std::cerr << "lme-mpm: error: " << lme_mpm::input::concise_message(e)
-                    << std::endl;
-        return 1;
-      }
-      throw;
-    }
-    catch (const std::exception &e)
-    {
-      // On several ranks an error may reach one rank only while the others wait for
-      // it in a collective call: stop them all (the output written so far stays).
-      if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
-      {
-        if (mpi.all_ranks_failed(5.0))
-        {
-          if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-            std::cerr << "lme-mpm: error: " << lme_mpm::input::concise_message(e)
-                      << std::endl;
-          return 1;
-        }
-        std::cerr << "lme-mpm: error on rank "
-                  << dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) << ": "
-                  << lme_mpm::input::concise_message(e) << std::endl;
-        MPI_Abort(MPI_COMM_WORLD, 1);
-      }
-      throw;
-    }
+    return run(cl, mpi, command_line);
   }
   catch (const std::exception &e)
   {
@@ -214,5 +256,4 @@ int main(int argc, char **argv)
     std::cerr << "lme-mpm: unknown error" << std::endl;
     return 1;
   }
-  return 0;
 }

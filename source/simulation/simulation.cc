@@ -263,10 +263,8 @@ void Simulation<dim>::advance_to_end(TimerOutput &timer,
     {
       TimerOutput::Scope scope(timer, "output");
       output.write_due_row(step_count, t, dt);
-      // Where the travel limit has shortened steps, a blow-up no longer moves a
-      // particle half a cell in a step: the energy tells it.
-      if (clock.limited_steps() > 0)
-        guard.stop_if_energy_runs_away(output.energy_drift(), step_count, t);
+      guard.stop_if_energy_runs_away(output.energy_drift(), clock.limited_steps(),
+                                     step_count, t);
       if (!output.scene_finished(t).empty())
         break;
     }

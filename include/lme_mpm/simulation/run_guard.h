@@ -61,12 +61,13 @@ public:
   void stop_if_unstable(std::size_t p, unsigned int step, double t) const;
   /**
    * Stops the run (on every rank) once the total energy has drifted by more than
-   * half of the run's energy scale (EnergyBalance): no stable run does that. Called
-   * where the travel limit on the time step has bound, which would otherwise carry a
-   * run that blew up onwards at ever shorter steps without any particle moving half a
-   * cell in one.
+   * half of the run's energy scale (EnergyBalance): no stable run does that. Acts once
+   * the travel limit on the time step has bound (@p limited_steps > 0), which would
+   * otherwise carry a run that blew up onwards at ever shorter steps without any
+   * particle moving half a cell in one.
    */
-  void stop_if_energy_runs_away(double drift, unsigned int step, double t) const;
+  void stop_if_energy_runs_away(double drift, unsigned int limited_steps,
+                                unsigned int step, double t) const;
   /// Throws ExcInterrupted on every rank once any rank has received SIGINT or
   /// SIGTERM (interrupt.h).
   void stop_if_interrupted(unsigned int step, double t) const;
