@@ -211,6 +211,23 @@ std::string subsection_name(const std::string &kind, const unsigned int i)
   return kind + " " + std::to_string(i + 1);
 }
 
+void follow_subsections(const std::string &line, std::vector<std::string> &path)
+{
+  const std::string text = trim(line.substr(0, line.find('#')));
+  if (text.rfind("subsection ", 0) == 0)
+    path.push_back(trim(text.substr(11)));
+  else if (text == "end" && !path.empty())
+    path.pop_back();
+}
+
+std::string path_prefix(const std::vector<std::string> &path)
+{
+  std::string prefix;
+  for (const auto &p : path)
+    prefix += p + "/";
+  return prefix;
+}
+
 std::map<std::string, std::string> entry_values(const std::string &text)
 {
   std::map<std::string, std::string> values;
@@ -220,20 +237,15 @@ std::map<std::string, std::string> entry_values(const std::string &text)
   while (std::getline(lines, line))
   {
     line = trim(line);
-    if (line.rfind("subsection ", 0) == 0)
-      path.push_back(trim(line.substr(11)));
-    else if (line == "end" && !path.empty())
-      path.pop_back();
-    else if (line.rfind("set ", 0) == 0)
+    if (line.rfind("set ", 0) != 0)
     {
-      const auto eq = line.find('=');
-      if (eq == std::string::npos)
-        continue;
-      std::string key;
-      for (const auto &p : path)
-        key += p + "/";
-      values[key + trim(line.substr(4, eq - 4))] = trim(line.substr(eq + 1));
+      follow_subsections(line, path);
+      continue;
     }
+    const auto eq = line.find('=');
+    if (eq != std::string::npos)
+      values[path_prefix(path) + trim(line.substr(4, eq - 4))] =
+          trim(line.substr(eq + 1));
   }
   return values;
 }

@@ -92,17 +92,8 @@ std::string subsection_at(const std::string &file, const unsigned int line)
   std::vector<std::string> path;
   std::string text;
   for (unsigned int n = 1; n < line && std::getline(in, text); ++n)
-  {
-    text = input::trim(text.substr(0, text.find('#')));
-    if (text.rfind("subsection ", 0) == 0)
-      path.push_back(input::trim(text.substr(11)));
-    else if (text == "end" && !path.empty())
-      path.pop_back();
-  }
-  std::string joined;
-  for (const auto &p : path)
-    joined += p + "/";
-  return joined;
+    input::follow_subsections(text, path);
+  return input::path_prefix(path);
 }
 
 /**

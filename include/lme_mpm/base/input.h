@@ -69,6 +69,16 @@ bool depends_on_space_or_time(const std::string &expression);
 /// "Kind N" with N counted from 1, the name of a repeated subsection.
 std::string subsection_name(const std::string &kind, unsigned int i);
 
+/**
+ * Follows the subsections a parameter-file line opens or closes: pushes the name of a
+ * "subsection NAME" line onto @p path, pops on "end". The path joined with '/', and a
+ * trailing '/', is what path_prefix() gives.
+ */
+void follow_subsections(const std::string &line, std::vector<std::string> &path);
+
+/// "A/B/" for the path {A, B}, "" for none.
+std::string path_prefix(const std::vector<std::string> &path);
+
 /// "Subsection/.../Entry" -> value of every 'set' line of a parameter-file text.
 std::map<std::string, std::string> entry_values(const std::string &text);
 
