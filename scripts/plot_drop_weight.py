@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """Drop-weight impact: for each run, the impact force and the summed support reaction
-against the time from the first contact, with the peaks of the paper's simulation
-(doc/reference_data.md section 5) marked, above the beam's final damage drawn on its
-reference configuration (the crack pattern), in one PNG.
+against the time from the start of the impact force, with the peaks of the paper's
+simulation (doc/reference_data.md section 5) marked at their times after its force
+started, above the beam's final damage drawn on its reference configuration (the
+crack pattern); below them, the crack tip's height above the notch tip against time
+for all runs, in one PNG.
 
     /usr/bin/python3 scripts/plot_drop_weight.py out/v264 out/v176 out/v088 \\
         --labels "2.64 m/s,1.76 m/s,0.881 m/s" --out drop_weight.png
@@ -21,16 +23,21 @@ from scene_plots import parse_runs, read_rows
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-# Molinos et al., simulated at 2.64 m/s: (time from contact in ms, force in kN).
-PAPER_IMPACT = (0.139, 105.6)
-PAPER_REACTION = (0.205, 59.5)
+# Molinos et al., simulated at 2.64 m/s: (time in ms after their impact force started,
+# 0.039 ms after contact; force in kN).
+PAPER_START = 0.039
+PAPER_IMPACT = (0.139 - PAPER_START, 105.6)
+PAPER_REACTION = (0.205 - PAPER_START, 59.5)
 
 
 def main():
     args, labels = parse_runs(__doc__, "drop_weight.png")
 
     n = len(args.runs)
-    fig, axes = plt.subplots(2, n, figsize=(5.0 * n, 6.0), squeeze=False)
+    fig = plt.figure(figsize=(5.0 * n, 9.0))
+    grid = fig.add_gridspec(3, n)
+    axes = [[fig.add_subplot(grid[row, i]) for i in range(n)] for row in range(2)]
+    tips = fig.add_subplot(grid[2, :])
     for i, run in enumerate(args.runs):
         history = read_rows(os.path.join(run, "history.csv"), "drop-weight")
         with open(os.path.join(run, "summary.json")) as f:
@@ -43,7 +50,7 @@ def main():
                  label="supports, summed")
         top.plot(*PAPER_IMPACT, "v", color="C0", label="paper: impact peak")
         top.plot(*PAPER_REACTION, "^", color="C1", label="paper: reaction peak")
-        top.set_xlabel("time from first contact (ms)")
+        top.set_xlabel("time from the force's start (ms)")
         top.set_ylabel("force (kN)")
         top.set_title("%s: peaks %.0f / %.0f kN" % (
             labels[i], 1e-3 * summary.get("peak_impact_force", 0),
@@ -61,6 +68,14 @@ def main():
         bottom.set_xlabel("x (mm)")
         bottom.set_ylabel("y (mm)")
         fig.colorbar(sc, ax=bottom, shrink=0.6, label="damage")
+        if "crack_tip" in history[0]:
+            tips.plot(t, [1e3 * float(r["crack_tip"]) for r in history],
+                      label="%s: max speed %.0f m/s" % (
+                          labels[i], summary.get("max_crack_speed", 0)))
+    tips.set_xlabel("time from the force's start (ms)")
+    tips.set_ylabel("crack tip above the notch tip (mm)")
+    tips.grid(alpha=0.3)
+    tips.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(args.out, dpi=110)
     print("wrote", args.out)

@@ -37,8 +37,10 @@ struct DropWeightEntries
   double length = 0.42, depth = 0.1, width = 0.1, span = 0.3, support = 0.01;
   double notch_depth = 0.05, notch_width = 0.0025, overhang = 0.015;
   double hammer_width = 0.05, hammer_height = 0.05, hammer_mass = 120.6;
-  double velocity  = 2.64;
-  bool notch_crack = true;
+  double head_height = 0, gap = 0, gauge = 0.01;
+  unsigned int head_material = 0;
+  double velocity            = 2.64;
+  bool notch_crack           = true;
   std::string centre, beam, hammer, supports;
 
   void entries(EntryList &list)
@@ -75,8 +77,23 @@ struct DropWeightEntries
     list.add("Hammer mass", hammer_mass, "120.6", Patterns::Double(),
              "The hammer's mass (kg) over the real thickness (Problem/Thickness in 2D, "
              "Length in 3D); sets the density of the hammer's material, > 0.");
+    list.add("Head height", head_height, "0", Patterns::Double(),
+             "The height (m) of the hammer's head: the bottom of the hammer, made of "
+             "Head material, in [0, Hammer height). It stands for the tup's own "
+             "compliance (its nose, load cell and the local crushing under it); 0: the "
+             "hammer is one block.");
+    list.add("Head material", head_material, "0", Patterns::Integer(0),
+             "The Material N of the head (its density given in the file, not set by the "
+             "scene), not the hammer's Body N/Material; 0 without a head.");
+    list.add("Hammer gap", gap, "0", Patterns::Double(),
+             "The distance (m) between the hammer's face and the beam's top face at "
+             "t = 0, >= 0.");
     list.add("Impact velocity", velocity, "2.64", Patterns::Double(),
              "The hammer's downward speed at first contact (m/s), > 0.");
+    list.add("Crack speed gauge length", gauge, "0.01", Patterns::Double(),
+             "The crack speed is the time the crack tip takes to run from one multiple "
+             "of this length above the notch tip to the next (m), > 0, as strain gauges "
+             "glued along the ligament measure it.");
     list.add("Beam", beam, "beam", Patterns::Anything(), "The Body N/Name of the beam.");
     list.add("Hammer", hammer, "hammer", Patterns::Anything(),
              "The Body N/Name of the hammer.");
@@ -111,7 +128,18 @@ public:
                              {overhang, entry("Notch crack overhang")},
                              {hammer_height, entry("Hammer height")},
                              {hammer_mass, entry("Hammer mass")},
-                             {velocity, entry("Impact velocity")}});
+                             {velocity, entry("Impact velocity")},
+                             {gauge, entry("Crack speed gauge length")}});
+    input::require_range(head_height, 0, hammer_height, false, entry("Head height"));
+    AssertThrow(head_height < hammer_height,
+                ExcBadInput(entry("Head height"),
+                            "must be below Scene/drop weight/Hammer height = " +
+                                number(hammer_height) +
+                                " (the head is part of the hammer)"));
+    AssertThrow(gap >= 0, ExcBadInput(entry("Hammer gap"), "must be >= 0"));
+    AssertThrow((head_height > 0) == (head_material > 0),
+                ExcBadInput(entry(head_height > 0 ? "Head material" : "Head height"),
+                            "a head needs both Head height > 0 and Head material >= 1"));
     input::require_range(span, 0, length, true, entry("Span"));
     input::require_range(notch_depth, 0, depth, true, entry("Notch depth"));
     input::require_range(notch_width, 0, span, true, entry("Notch width"));
@@ -141,22 +169,63 @@ public:
     }
     for (const int side : {-1, 1})
       write_support(writer, side < 0 ? left : right, cx + 0.5 * side * span);
-    const double top = cy + depth;
+    const double face = cy + depth + gap;
     writer.set_body(hammer, "Shape",
-                    box_shape<dim>(cx - 0.5 * hammer_width, top, cx + 0.5 * hammer_width,
-                                   top + hammer_height, width),
+                    box_shape<dim>(cx - 0.5 * hammer_width, face, cx + 0.5 * hammer_width,
+                                   face + hammer_height, width),
                     entry("Hammer"));
     writer.set_body(hammer, "Initial velocity/Function expression",
                     dim == 2 ? "0; " + number(-velocity)
                              : "0; " + number(-velocity) + "; 0",
                     entry("Impact velocity"));
-    // The hammer's material gets the density that gives it its mass.
+    // The hammer's body material gets the density that gives the hammer its mass,
+    // with the head's own mass taken off.
     const std::string material =
         writer.get(input::subsection_name("Body", writer.body(hammer, entry("Hammer"))) +
                    "/Material");
-    const double density = hammer_mass / (hammer_width * hammer_height * width);
+    double head_mass = 0;
+    if (head_height > 0)
+    {
+      const auto n_materials = std::stoul(writer.get("Problem/Number of materials"));
+      AssertThrow(head_material <= n_materials,
+                  ExcBadInput(entry("Head material"),
+                              "must be between 1 and Problem/Number of materials = " +
+                                  std::to_string(n_materials)));
+      AssertThrow(std::to_string(head_material) != material,
+                  ExcBadInput(entry("Head material"),
+                              "must differ from the hammer's Body N/Material (" +
+                                  material +
+                                  "), whose density the scene sets from Hammer mass"));
+      const std::string head = "Material " + std::to_string(head_material);
+      head_mass =
+          std::stod(writer.get(head + "/Density")) * hammer_width * head_height * width;
+      AssertThrow(head_mass < hammer_mass,
+                  ExcBadInput(entry("Head material"),
+                              "the head (" + head + "/Density over Head height) weighs " +
+                                  number(head_mass) +
+                                  " kg, not less than Scene/drop weight/Hammer mass"));
+      writer.set_body(hammer, "Material zones",
+                      std::to_string(head_material) + ": " +
+                          box_shape<dim>(cx - 0.5 * hammer_width, face,
+                                         cx + 0.5 * hammer_width, face + head_height,
+                                         width),
+                      entry("Head height"));
+    }
+    const double density = (hammer_mass - head_mass) /
+                           (hammer_width * (hammer_height - head_height) * width);
     writer.set("Material " + material + "/Density", number(density), entry("Hammer mass"),
                " for the hammer's material");
+    // The beam's Rayleigh speed, the scale of its crack speed (linear elastic beams).
+    const std::string concrete =
+        "Material " +
+        writer.get(input::subsection_name("Body", writer.body(beam, entry("Beam"))) +
+                   "/Material");
+    if (writer.get(concrete + "/Model") == "linear elastic")
+      rayleigh_speed = rayleigh_wave_speed(
+          std::stod(writer.get(concrete + "/linear elastic/Young's modulus")),
+          std::stod(writer.get(concrete + "/linear elastic/Poisson's ratio")),
+          std::stod(writer.get(concrete + "/Density")),
+          dim == 2 && writer.get("Problem/Plane assumption") == "plane stress");
   }
 
   void check(const SceneState<dim> &state) const override
@@ -178,7 +247,7 @@ public:
   void write_history_header(std::ostream &out) const override
   {
     out << ",impact_force,hammer_momentum_rate,beam_momentum_rate,reaction_force,cmod,"
-           "damage_total";
+           "damage_total,crack_tip";
   }
 
   void write_history_row(std::ostream &out, const SceneState<dim> &state) const override
@@ -220,6 +289,20 @@ public:
     const double cmod = mean_displacement_near(p, b, Point<2>(cx + g, cy + r), r)[0] -
                         mean_displacement_near(p, b, Point<2>(cx - g, cy + r), r)[0];
     const double damaged = damaged_volume(p, b);
+    // The crack from the notch: how far its tip has run up the ligament; the times it
+    // passes each gauge length give its speed.
+    const double tip =
+        crack_tip_distance(p, b, dim == 2 ? width : 1.0, Point<2>(cx, cy + notch_depth),
+                           Tensor<1, 2>({0.0, 1.0}));
+    while (tip >= (passed + 1) * gauge)
+    {
+      const double level = (passed + 1) * gauge;
+      const double t =
+          last_time + (state.time - last_time) * (level - last_tip) / (tip - last_tip);
+      if (passed > 0)
+        max_crack_speed = std::max(max_crack_speed, gauge / (t - last_pass));
+      last_pass = t, ++passed;
+    }
     // Peaks, timed from the start of the first interval with a contact force.
     if (first_contact < 0 && std::abs(impact) > 0)
       first_contact = last_time;
@@ -234,8 +317,9 @@ public:
     last_momentum        = momentum;
     last_beam_momentum   = beam_momentum;
     last_support_impulse = support_impulse;
+    last_tip             = tip;
     out << "," << impact << "," << rate << "," << beam_rate << "," << reaction << ","
-        << cmod << "," << damaged;
+        << cmod << "," << damaged << "," << tip;
   }
 
   void add_results(const SceneState<dim> &,
@@ -248,12 +332,17 @@ public:
     results["peak_reaction_force"]         = peak_reaction;
     results["time_of_peak_reaction_force"] = time_of_peak_reaction;
     results["time_of_first_contact"]       = first_contact;
+    results["crack_tip"]                   = last_tip;
+    results["max_crack_speed"]             = max_crack_speed;
+    if (rayleigh_speed > 0)
+      results["max_crack_speed_over_rayleigh"] = max_crack_speed / rayleigh_speed;
   }
 
   void serialize(Archive &ar) override
   {
     ar(last_time, last_momentum, last_beam_momentum, last_support_impulse, first_contact,
-       peak_impact, time_of_peak_impact, peak_reaction, time_of_peak_reaction);
+       peak_impact, time_of_peak_impact, peak_reaction, time_of_peak_reaction, last_tip,
+       passed, last_pass, max_crack_speed);
   }
 
 private:
@@ -309,6 +398,11 @@ private:
   mutable double first_contact        = -1;
   mutable double peak_impact = 0, time_of_peak_impact = 0;
   mutable double peak_reaction = 0, time_of_peak_reaction = 0;
+  // The crack tip's distance above the notch tip at the last row, the gauge levels it
+  // has passed and when it passed the last, and the fastest run between two levels.
+  mutable double last_tip = 0, last_pass = 0, max_crack_speed = 0;
+  mutable unsigned int passed = 0;
+  double rayleigh_speed       = 0;
 };
 } // namespace scenes
 } // namespace lme_mpm

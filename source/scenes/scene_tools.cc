@@ -1,6 +1,7 @@
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/scenes/scene_tools.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -74,20 +75,22 @@ std::string load_fell_below(const SceneState<dim> &state, const unsigned int bod
 }
 
 template <int dim>
-double crack_path_length(const ParticleStore<dim> &p, const unsigned int body,
-                         const double thickness, const double threshold)
+CrackClusters crack_clusters(const ParticleStore<dim> &p, const unsigned int body,
+                             const double thickness, const double threshold)
 {
+  CrackClusters result;
   std::vector<std::size_t> cracked;
   double area = 0;
   for (std::size_t i = 0; i < p.size(); ++i)
     if (p.body_id[i] == body && p.damage[i] >= threshold)
       cracked.push_back(i), area += p.initial_volume[i] / (dim == 2 ? thickness : 1.0);
   if (cracked.empty())
-    return 0;
+    return result;
   // The particles' spacing in the x-y plane (their mean area's side; in 3D the
   // volume's cube root).
   const double s =
       dim == 2 ? std::sqrt(area / cracked.size()) : std::cbrt(area / cracked.size());
+  result.spacing = s;
   // Clusters of particles within 1.5 spacings of each other, by union-find over
   // square bins of that size.
   const std::size_t n = cracked.size();
@@ -129,8 +132,21 @@ double crack_path_length(const ParticleStore<dim> &p, const unsigned int body,
   std::map<std::size_t, std::vector<std::size_t>> clusters;
   for (std::size_t k = 0; k < n; ++k)
     clusters[find(k)].push_back(cracked[k]);
+  for (auto &[r, members] : clusters)
+    result.clusters.push_back(std::move(members));
+  return result;
+}
+
+template <int dim>
+double crack_path_length(const ParticleStore<dim> &p, const unsigned int body,
+                         const double thickness, const double threshold)
+{
+  const CrackClusters cracks = crack_clusters(p, body, thickness, threshold);
+  if (cracks.clusters.empty())
+    return 0;
+  const double s                          = cracks.spacing;
   const std::vector<std::size_t> *largest = nullptr;
-  for (const auto &[r, members] : clusters)
+  for (const auto &members : cracks.clusters)
     if (!largest || members.size() > largest->size())
       largest = &members;
   // Its main axis: the principal direction of the positions' covariance.
@@ -177,6 +193,56 @@ void add_crack_energy(const ParticleStore<dim> &particles, const unsigned int bo
   const auto dissipated = results.find("dissipated_energy");
   if (G_F > 0 && area > 0 && dissipated != results.end())
     results["fracture_energy_ratio"] = dissipated->second / (G_F * area);
+}
+
+template <int dim>
+double crack_tip_distance(const ParticleStore<dim> &p, const unsigned int body,
+                          const double thickness, const Point<2> &origin,
+                          const Tensor<1, 2> &direction, const double threshold)
+{
+  const CrackClusters cracks = crack_clusters(p, body, thickness, threshold);
+  const double reach         = 1.5 * cracks.spacing;
+  const auto from_origin     = [&](const std::size_t i)
+  {
+    return Tensor<1, 2>(
+        {p.reference_position[i][0] - origin[0], p.reference_position[i][1] - origin[1]});
+  };
+  double distance = 0;
+  for (const auto &members : cracks.clusters)
+  {
+    // Only a crack that starts at the origin counts, not one elsewhere in the body.
+    if (std::none_of(members.begin(), members.end(),
+                     [&](const std::size_t i) { return from_origin(i).norm() <= reach; }))
+      continue;
+    for (const std::size_t i : members)
+      distance = std::max(distance, from_origin(i) * direction);
+  }
+  return distance;
+}
+
+double rayleigh_wave_speed(const double E, const double nu, const double rho,
+                           const bool plane_stress)
+{
+  // Shear and longitudinal speeds of the medium (a plate's in plane stress).
+  const double cs = std::sqrt(E / (2 * rho * (1 + nu)));
+  const double cp = plane_stress
+                        ? std::sqrt(E / (rho * (1 - nu * nu)))
+                        : std::sqrt(E * (1 - nu) / (rho * (1 + nu) * (1 - 2 * nu)));
+  const double k2 = cs * cs / (cp * cp);
+  // The Rayleigh equation in x = c_R / c_s, negative at 0.5 and positive at 1 for any
+  // nu in [0, 0.5]: bisection.
+  const auto f = [k2](const double x)
+  {
+    const double x2 = x * x;
+    return (2 - x2) * (2 - x2) - 4 * std::sqrt(1 - x2) * std::sqrt(1 - k2 * x2);
+  };
+  double lo = 0.5, hi = 1;
+  for (int i = 0; i < 60; ++i)
+  {
+    const double mid       = 0.5 * (lo + hi);
+    (f(mid) < 0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi) * cs;
 }
 
 double fracture_energy_of(const EntryWriter &writer, const unsigned int body)
@@ -253,6 +319,14 @@ template std::string ramped_velocity<2>(double, double, double);
 template std::string ramped_velocity<3>(double, double, double);
 template std::string load_fell_below(const SceneState<2> &, unsigned int, double);
 template std::string load_fell_below(const SceneState<3> &, unsigned int, double);
+template CrackClusters crack_clusters(const ParticleStore<2> &, unsigned int, double,
+                                      double);
+template CrackClusters crack_clusters(const ParticleStore<3> &, unsigned int, double,
+                                      double);
+template double crack_tip_distance(const ParticleStore<2> &, unsigned int, double,
+                                   const Point<2> &, const Tensor<1, 2> &, double);
+template double crack_tip_distance(const ParticleStore<3> &, unsigned int, double,
+                                   const Point<2> &, const Tensor<1, 2> &, double);
 template double crack_path_length(const ParticleStore<2> &, unsigned int, double, double);
 template double crack_path_length(const ParticleStore<3> &, unsigned int, double, double);
 template void add_crack_energy(const ParticleStore<2> &, unsigned int, double, double,

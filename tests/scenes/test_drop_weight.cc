@@ -43,6 +43,49 @@ TEST(DropWeight, BadInputNamesTheEntry)
       << velocity;
 }
 
+TEST(DropWeight, HeadAndGapEntriesAreChecked)
+{
+  const std::string prm = lme_mpm_test::scene("drop_weight.prm");
+  const std::string dir = lme_mpm_test::scratch("drop_weight_head_bad");
+  const auto names      = [&](const std::vector<std::string> &o, const std::string &entry)
+  {
+    const std::string e = lme_mpm_test::run_error(prm, o, dir);
+    EXPECT_NE(e.find(entry), std::string::npos) << e;
+  };
+  // A head as tall as the hammer, a gap below zero.
+  names({"Scene/drop weight/Head height=0.05"}, "Scene/drop weight/Head height");
+  names({"Scene/drop weight/Hammer gap=-1e-4"}, "Scene/drop weight/Hammer gap");
+  // A head needs both entries; its material is not the hammer body's (whose density
+  // the scene sets), exists, and leaves the body some mass.
+  names({"Scene/drop weight/Head material=0"}, "Scene/drop weight/Head material");
+  names({"Scene/drop weight/Head height=0", "Scene/drop weight/Head material=3"},
+        "Scene/drop weight/Head height");
+  names({"Scene/drop weight/Head material=2"}, "Scene/drop weight/Head material");
+  names({"Scene/drop weight/Head material=4"}, "Scene/drop weight/Head material");
+  names({"Material 3/Density=3e7"}, "Scene/drop weight/Head material");
+}
+
+TEST(DropWeight, HeadAndBodyWeighTheHammersMass)
+{
+  // The head's material keeps its density, the body's gets the rest of the 120.6 kg:
+  // at t = 0 only the hammer moves, so the kinetic energy is half its mass times v^2,
+  // with the head and without.
+  for (const std::string head : {"0.01", "0.02"})
+  {
+    const std::string tag = "drop_weight_mass_" + head;
+    const auto r          = lme_mpm_test::run_scene("drop_weight.prm", tag,
+                                                    {"Scene/drop weight/Head height=" + head,
+                                                     "Scene/drop weight/Hammer gap=0.0025",
+                                                     "Time/End time=2e-7"});
+    const auto h          = lme_mpm_test::read_history(lme_mpm_test::scratch_path(tag));
+    EXPECT_NEAR(h.second.front()[lme_mpm_test::column(h.first, "kinetic_energy")],
+                0.5 * 120.6 * 2.64 * 2.64, 1e-9 * 420)
+        << head;
+    // The 2.5 mm gap (the hammer still on cell boundaries): no contact force yet.
+    EXPECT_EQ(r.count("peak_impact_force"), 0u) << head;
+  }
+}
+
 TEST(DropWeight, NeighbourhoodCheckLooksOnlyAtTheCellsTheBeamStartsIn)
 {
   // The scene's graded grid has empty cells 5 mm x 1.25 mm (coarse columns crossing

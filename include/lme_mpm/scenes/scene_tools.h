@@ -45,10 +45,35 @@ void set_notch_crack(EntryWriter &writer, const std::string &body,
 template <int dim>
 std::string load_fell_below(const SceneState<dim> &state, unsigned int body,
                             double fraction);
+/// The particles of a body at or above a damage threshold, in clusters of particles
+/// linked where they lie within 1.5 spacings of each other (reference x-y plane).
+struct CrackClusters
+{
+  /// The particles' spacing: the square root of their mean initial area (volume
+  /// over thickness in 2D; the cube root of the mean volume in 3D); 0 if none.
+  double spacing = 0;
+  std::vector<std::vector<std::size_t>> clusters;
+};
+template <int dim>
+CrackClusters crack_clusters(const ParticleStore<dim> &particles, unsigned int body,
+                             double thickness, double threshold = 0.99);
+/**
+ * How far a crack that starts at @p origin has run along the unit @p direction (m, in
+ * the reference configuration): the largest projection onto @p direction, from
+ * @p origin, of the particles of the crack_clusters() that hold a particle within 1.5
+ * spacings of @p origin; 0 while none does. Used for a crack tip on a ligament.
+ */
+template <int dim>
+double crack_tip_distance(const ParticleStore<dim> &particles, unsigned int body,
+                          double thickness, const Point<2> &origin,
+                          const Tensor<1, 2> &direction, double threshold = 0.99);
+/// The Rayleigh surface-wave speed (m/s) of an isotropic elastic medium (Young's
+/// modulus @p E, Poisson's ratio @p nu, density @p rho): the root of the Rayleigh
+/// equation, with a thin plate's longitudinal speed in plane stress.
+double rayleigh_wave_speed(double E, double nu, double rho, bool plane_stress);
 /**
  * The crack the damage field of @p body shows, in the x-y plane of the reference
- * configuration: the particles with damage >= @p threshold, linked where they lie
- * within 1.5 particle spacings of each other; of the largest such cluster, the
+ * configuration: of the largest of its crack_clusters(), the
  * particles are sorted along its main axis (the principal direction of their
  * positions), cut into slices one spacing wide, and the centroids of successive
  * slices joined. Returns that polyline's length plus one spacing (the crack's extent

@@ -1,0 +1,83 @@
+// What the scenes measure on their particles: the crack from a notch, the Rayleigh
+// speed that scales its speed.
+#include <gtest/gtest.h>
+
+#include <lme_mpm/scenes/scene_tools.h>
+
+#include <cmath>
+
+using namespace lme_mpm;
+
+namespace
+{
+/// A 2D block of particles 1 mm apart (thickness 0.1 m), x in [0, 20) mm, y in
+/// [0, 30) mm, body 0.
+ParticleStore<2> block()
+{
+  ParticleStore<2> p;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 30; ++j)
+      p.add(Point<2>(1e-3 * (i + 0.5), 1e-3 * (j + 0.5)), 1.0, 1e-6 * 0.1, 0, 0);
+  return p;
+}
+
+void damage_column(ParticleStore<2> &p, const double x, const double y0, const double y1)
+{
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (std::abs(p.reference_position[i][0] - x) < 1e-9 &&
+        p.reference_position[i][1] > y0 && p.reference_position[i][1] < y1)
+      p.damage[i] = 1;
+}
+} // namespace
+
+TEST(SceneTools, CrackTipFollowsOnlyTheCrackFromTheNotch)
+{
+  ParticleStore<2> p         = block();
+  const Point<2> notch_tip   = {0.0105, 0.0};
+  const Tensor<1, 2> upwards = Tensor<1, 2>({0.0, 1.0});
+  const auto tip             = [&]()
+  { return scenes::crack_tip_distance(p, 0, 0.1, notch_tip, upwards); };
+  EXPECT_EQ(tip(), 0);
+  // A crack elsewhere (from the top face down to y = 20 mm) is not the notch's.
+  damage_column(p, 0.0035, 0.020, 1);
+  EXPECT_EQ(tip(), 0);
+  // The crack from the notch tip up to the particle at y = 12.5 mm.
+  damage_column(p, 0.0105, 0, 0.013);
+  EXPECT_NEAR(tip(), 0.0125, 1e-12);
+  // Partly damaged particles above do not count; once they fail they do, and a
+  // particle of another body never does.
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (std::abs(p.reference_position[i][0] - 0.0105) < 1e-9 &&
+        p.reference_position[i][1] > 0.013 && p.reference_position[i][1] < 0.016)
+      p.damage[i] = 0.9;
+  EXPECT_NEAR(tip(), 0.0125, 1e-12);
+  damage_column(p, 0.0105, 0.013, 0.016);
+  EXPECT_NEAR(tip(), 0.0155, 1e-12);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if ((p.reference_position[i] - Point<2>(0.0105, 0.0165)).norm() < 1e-9)
+      p.body_id[i] = 1, p.damage[i] = 1;
+  EXPECT_NEAR(tip(), 0.0155, 1e-12);
+  // The two cracks joined: the tip is the top of the other one.
+  damage_column(p, 0.0045, 0.014, 0.021);
+  damage_column(p, 0.0055, 0.013, 0.016);
+  for (const double x : {0.0065, 0.0075, 0.0085, 0.0095})
+    damage_column(p, x, 0.014, 0.016);
+  EXPECT_NEAR(tip(), 0.0295, 1e-12);
+}
+
+TEST(SceneTools, RayleighSpeedSolvesTheRayleighEquation)
+{
+  // A Poisson solid (nu = 0.25): c_R / c_s = sqrt(2 - 2 / sqrt(3)) = 0.9194.
+  const double E = 2.5, rho = 1.0, cs = std::sqrt(E / (2 * rho * 1.25));
+  EXPECT_NEAR(scenes::rayleigh_wave_speed(E, 0.25, rho, false) / cs,
+              std::sqrt(2 - 2 / std::sqrt(3.0)), 1e-12);
+  // Incompressible: 0.9553 c_s, the root of x^3 - 8 x^2 + 24 x - 16 = 0 in x = (c/cs)^2.
+  EXPECT_NEAR(scenes::rayleigh_wave_speed(E, 0.5, rho, false) /
+                  std::sqrt(E / (2 * rho * 1.5)),
+              0.955313, 1e-6);
+  // Plane stress acts as a solid of Poisson's ratio nu / (1 + nu): the same speed as
+  // plane strain with nu' = 0.2 / 1.2 and the same shear modulus.
+  const double nu = 0.2, nu_eff = nu / (1 + nu), E_eff = E * (1 + nu_eff) / (1 + nu);
+  EXPECT_NEAR(scenes::rayleigh_wave_speed(E, nu, rho, true),
+              scenes::rayleigh_wave_speed(E_eff, nu_eff, rho, false), 1e-12);
+}
