@@ -3,8 +3,9 @@
 against the time from the start of the impact force, with the peaks of the paper's
 simulation (doc/reference_data.md section 5) marked at their times after its force
 started, above the beam's final damage drawn on its reference configuration (the
-crack pattern); below them, the crack tip's height above the notch tip against time
-for all runs, in one PNG.
+crack pattern); below them, the heights above the notch tip of the fully softened
+crack's tip (solid) and of the softening front (dashed) against time for all runs, in
+one PNG.
 
     /usr/bin/python3 scripts/plot_drop_weight.py out/v264 out/v176 out/v088 \\
         --labels "2.64 m/s,1.76 m/s,0.881 m/s" --out drop_weight.png
@@ -69,9 +70,13 @@ def main():
         bottom.set_ylabel("y (mm)")
         fig.colorbar(sc, ax=bottom, shrink=0.6, label="damage")
         if "crack_tip" in history[0]:
-            tips.plot(t, [1e3 * float(r["crack_tip"]) for r in history],
-                      label="%s: max speed %.0f m/s" % (
-                          labels[i], summary.get("max_crack_speed", 0)))
+            line, = tips.plot(t, [1e3 * float(r["crack_tip"]) for r in history],
+                              label="%s: fully softened" % labels[i])
+        if "softening_front" in history[0]:
+            tips.plot(t, [1e3 * float(r["softening_front"]) for r in history], "--",
+                      color=line.get_color(),
+                      label="%s: softening front, max %.0f m/s" % (
+                          labels[i], summary.get("max_softening_front_speed", 0)))
     tips.set_xlabel("time from the force's start (ms)")
     tips.set_ylabel("crack tip above the notch tip (mm)")
     tips.grid(alpha=0.3)

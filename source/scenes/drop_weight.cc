@@ -17,19 +17,26 @@ namespace scenes
  * apart), the supports' (zero) velocity, the hammer's initial velocity and its
  * material's density from the hammer's mass.
  *
- * With Contact/Type = multi-field the supports are fixed cylinders (prescribed
- * bodies) and hammer, beam and supports meet through contact. With Contact/Type =
+ * The hammer is a heavy block (its density set from the hammer's mass) with,
+ * optionally, a head of its own material at its face: the tup's compliance, whose
+ * modulus the shipped scene calibrates (scripts/calibrate_drop_weight_head.py).
+ *
+ * With Contact/Type = multi-field hammer and beam meet through contact and the
+ * supports are fixed cylinders (prescribed bodies) in contact with the beam, or, with
+ * Support kind = node sets, constrained node sets as on one field. With Contact/Type =
  * none (the paper's single velocity field) hammer and beam share the grid's nodes and
- * the supports are constrained node sets: the vertical velocity of the node column
- * through each support's axis, from the beam's bottom face down, is held at zero.
+ * the supports are node sets: the vertical velocity of the node column through each
+ * support's axis, from the beam's bottom face down, is held at zero.
  *
  * History: impact_force (the force on the hammer, upwards, N, for the real thickness:
  * the contact force with contact, the hammer's momentum rate on a single field),
  * hammer_momentum_rate and beam_momentum_rate (the change of the body's momentum over
  * the row's interval divided by its length), reaction_force (the upward forces of the
  * supports on the beam, summed, as means over the row's interval), cmod (crack-mouth
- * opening) and damage_total. Summary: the peaks of the impact and reaction forces and
- * their times from the first contact.
+ * opening), damage_total, crack_tip and softening_front (how far the fully softened
+ * crack and the front of softening have run up the ligament). Summary: the peaks of
+ * the impact and reaction forces and their times from the first contact, the fronts'
+ * largest speeds over a gauge length and their ratios to the Rayleigh speed.
  */
 /// The drop-weight scene's entries, declared and read from this one list.
 struct DropWeightEntries
@@ -41,7 +48,7 @@ struct DropWeightEntries
   unsigned int head_material = 0;
   double velocity            = 2.64;
   bool notch_crack           = true;
-  std::string centre, beam, hammer, supports;
+  std::string centre, beam, hammer, supports, support_kind = "auto";
 
   void entries(EntryList &list)
   {
@@ -94,6 +101,13 @@ struct DropWeightEntries
              "The crack speed is the time the crack tip takes to run from one multiple "
              "of this length above the notch tip to the next (m), > 0, as strain gauges "
              "glued along the ligament measure it.");
+    list.add("Support kind", support_kind, "auto",
+             Patterns::Selection("auto|cylinders|node sets"),
+             "'cylinders': fixed rigid cylinders in contact with the beam (unilateral: "
+             "the beam can lift off), which needs Contact/Type = multi-field; 'node "
+             "sets': the vertical velocity of a node column under each support held at "
+             "zero (bilateral, the paper's supports); 'auto': cylinders with contact, "
+             "node sets without.");
     list.add("Beam", beam, "beam", Patterns::Anything(), "The Body N/Name of the beam.");
     list.add("Hammer", hammer, "hammer", Patterns::Anything(),
              "The Body N/Name of the hammer.");
@@ -113,8 +127,14 @@ public:
 
   DropWeight(ParameterHandler &prm, const SceneContext<dim> &context)
       : DropWeightEntries(EntryList::parse<DropWeightEntries>(prm)),
-        single_field(!context.contact)
+        single_field(!context.contact),
+        node_supports(support_kind == "node sets" ||
+                      (support_kind == "auto" && !context.contact))
   {
+    AssertThrow(!(single_field && support_kind == "cylinders"),
+                ExcBadInput(entry("Support kind"),
+                            "cylinders meet the beam through contact: they need "
+                            "Contact/Type = multi-field"));
     if (dim == 2)
       width = context.thickness;
     const auto names = input::parse_names(supports, 2, entry("Supports"));
@@ -232,7 +252,7 @@ public:
   {
     (void)body_index(state, beam, entry("Beam"));
     (void)body_index(state, hammer, entry("Hammer"));
-    if (single_field)
+    if (node_supports)
     {
       (void)constraint_named(state, left, entry("Supports"));
       (void)constraint_named(state, right, entry("Supports"));
@@ -247,7 +267,7 @@ public:
   void write_history_header(std::ostream &out) const override
   {
     out << ",impact_force,hammer_momentum_rate,beam_momentum_rate,reaction_force,cmod,"
-           "damage_total,crack_tip";
+           "damage_total,crack_tip,softening_front";
   }
 
   void write_history_row(std::ostream &out, const SceneState<dim> &state) const override
@@ -268,7 +288,9 @@ public:
     const double beam_rate =
         interval > 0 ? (beam_momentum - last_beam_momentum) / interval : 0.0;
     double impact = rate, reaction = 0, support_impulse = 0;
-    if (single_field)
+    if (!single_field)
+      impact = (*state.contact_forces)[h][1];
+    if (node_supports)
     {
       // The constraints' impulses over the row's interval: their mean reaction.
       support_impulse = constraint_named(state, left, entry("Supports")).impulse()[1] +
@@ -278,10 +300,9 @@ public:
     }
     else
     {
-      const auto &force = *state.contact_forces;
-      impact            = force[h][1];
       // What the supports push the beam up with: minus the forces they receive.
-      reaction = -force[body_index(state, left, entry("Supports"))][1] -
+      const auto &force = *state.contact_forces;
+      reaction          = -force[body_index(state, left, entry("Supports"))][1] -
                  force[body_index(state, right, entry("Supports"))][1];
     }
     // The crack mouth: material points on the bottom face 2 mm outside the notch.
@@ -289,20 +310,17 @@ public:
     const double cmod = mean_displacement_near(p, b, Point<2>(cx + g, cy + r), r)[0] -
                         mean_displacement_near(p, b, Point<2>(cx - g, cy + r), r)[0];
     const double damaged = damaged_volume(p, b);
-    // The crack from the notch: how far its tip has run up the ligament; the times it
-    // passes each gauge length give its speed.
+    // The crack from the notch: how far its fully softened tip and its softening
+    // front have run up the ligament; the times they pass each gauge length give
+    // their speeds.
+    const Point<2> notch_tip(cx, cy + notch_depth);
+    const double thickness = dim == 2 ? width : 1.0;
     const double tip =
-        crack_tip_distance(p, b, dim == 2 ? width : 1.0, Point<2>(cx, cy + notch_depth),
-                           Tensor<1, 2>({0.0, 1.0}));
-    while (tip >= (passed + 1) * gauge)
-    {
-      const double level = (passed + 1) * gauge;
-      const double t =
-          last_time + (state.time - last_time) * (level - last_tip) / (tip - last_tip);
-      if (passed > 0)
-        max_crack_speed = std::max(max_crack_speed, gauge / (t - last_pass));
-      last_pass = t, ++passed;
-    }
+        crack_tip_distance(p, b, thickness, notch_tip, Tensor<1, 2>({0.0, 1.0}));
+    const double front = crack_tip_distance(p, b, thickness, notch_tip,
+                                            Tensor<1, 2>({0.0, 1.0}), softening_onset);
+    crack.advance(tip, last_time, state.time, gauge);
+    softening.advance(front, last_time, state.time, gauge);
     // Peaks, timed from the start of the first interval with a contact force.
     if (first_contact < 0 && std::abs(impact) > 0)
       first_contact = last_time;
@@ -317,9 +335,8 @@ public:
     last_momentum        = momentum;
     last_beam_momentum   = beam_momentum;
     last_support_impulse = support_impulse;
-    last_tip             = tip;
     out << "," << impact << "," << rate << "," << beam_rate << "," << reaction << ","
-        << cmod << "," << damaged << "," << tip;
+        << cmod << "," << damaged << "," << tip << "," << front;
   }
 
   void add_results(const SceneState<dim> &,
@@ -332,17 +349,24 @@ public:
     results["peak_reaction_force"]         = peak_reaction;
     results["time_of_peak_reaction_force"] = time_of_peak_reaction;
     results["time_of_first_contact"]       = first_contact;
-    results["crack_tip"]                   = last_tip;
-    results["max_crack_speed"]             = max_crack_speed;
+    results["crack_tip"]                   = crack.position;
+    results["max_crack_speed"]             = crack.max_speed;
+    results["softening_front"]             = softening.position;
+    results["max_softening_front_speed"]   = softening.max_speed;
     if (rayleigh_speed > 0)
-      results["max_crack_speed_over_rayleigh"] = max_crack_speed / rayleigh_speed;
+    {
+      results["max_crack_speed_over_rayleigh"] = crack.max_speed / rayleigh_speed;
+      results["max_softening_front_speed_over_rayleigh"] =
+          softening.max_speed / rayleigh_speed;
+    }
   }
 
   void serialize(Archive &ar) override
   {
     ar(last_time, last_momentum, last_beam_momentum, last_support_impulse, first_contact,
-       peak_impact, time_of_peak_impact, peak_reaction, time_of_peak_reaction, last_tip,
-       passed, last_pass, max_crack_speed);
+       peak_impact, time_of_peak_impact, peak_reaction, time_of_peak_reaction,
+       crack.position, crack.passed, crack.last_pass, crack.max_speed, softening.position,
+       softening.passed, softening.last_pass, softening.max_speed);
   }
 
 private:
@@ -356,7 +380,7 @@ private:
   void write_support(EntryWriter &writer, const std::string &name,
                      const double axis) const
   {
-    if (!single_field)
+    if (!node_supports)
     {
       writer.set_body(name, "Shape",
                       cylinder_shape<dim>(axis, cy - support, support, width),
@@ -367,7 +391,8 @@ private:
     }
     AssertThrow(!writer.has_body(name) && writer.n_constraints() >= 2,
                 ExcBadInput(entry("Supports"),
-                            "with Contact/Type = none the supports are node sets: give "
+                            "supports as node sets (Contact/Type = none or Support kind "
+                            "= node sets): give "
                             "two Boundary conditions/Constraint N named '" +
                                 left + "' and '" + right +
                                 "' and no body of these names "
@@ -389,7 +414,7 @@ private:
     writer.set(section + "/Components", "y", entry("Supports"));
   }
 
-  bool single_field;
+  bool single_field, node_supports;
   double cx = 0.23, cy = 0.025;
   std::string left, right;
   // What the history rows have seen, in order (kept in checkpoints).
@@ -398,11 +423,37 @@ private:
   mutable double first_contact        = -1;
   mutable double peak_impact = 0, time_of_peak_impact = 0;
   mutable double peak_reaction = 0, time_of_peak_reaction = 0;
-  // The crack tip's distance above the notch tip at the last row, the gauge levels it
-  // has passed and when it passed the last, and the fastest run between two levels.
-  mutable double last_tip = 0, last_pass = 0, max_crack_speed = 0;
-  mutable unsigned int passed = 0;
-  double rayleigh_speed       = 0;
+  /// A front running up the ligament, timed as strain gauges a gauge length apart
+  /// would time it.
+  struct GaugedFront
+  {
+    /// Its distance above the notch tip at the last row, the gauge levels it has
+    /// passed, when it passed the last, and its fastest run between two levels.
+    double position = 0, last_pass = 0, max_speed = 0;
+    unsigned int passed = 0;
+
+    /// The front at @p now is at @p distance; it was at position at @p before.
+    void advance(const double distance, const double before, const double now,
+                 const double gauge)
+    {
+      while (distance >= (passed + 1) * gauge)
+      {
+        // When it passed the level, interpolated linearly between the rows.
+        const double level = (passed + 1) * gauge;
+        const double t =
+            before + (now - before) * (level - position) / (distance - position);
+        if (passed > 0)
+          max_speed = std::max(max_speed, gauge / (t - last_pass));
+        last_pass = t, ++passed;
+      }
+      position = distance;
+    }
+  };
+  // The fully softened crack and the front where softening has started (damage above
+  // this), which is what a gauge on the ligament sees: its strain peaks there.
+  static constexpr double softening_onset = 1e-9;
+  mutable GaugedFront crack, softening;
+  double rayleigh_speed = 0;
 };
 } // namespace scenes
 } // namespace lme_mpm

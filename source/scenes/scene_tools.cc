@@ -76,23 +76,30 @@ std::string load_fell_below(const SceneState<dim> &state, const unsigned int bod
 
 template <int dim>
 CrackClusters crack_clusters(const ParticleStore<dim> &p, const unsigned int body,
-                             const double thickness, const double threshold)
+                             const double thickness, const double threshold,
+                             const double link_factor)
 {
   CrackClusters result;
   std::vector<std::size_t> cracked;
-  double area = 0;
+  std::vector<double> size;
+  double area = 0, largest = 0;
   for (std::size_t i = 0; i < p.size(); ++i)
     if (p.body_id[i] == body && p.damage[i] >= threshold)
-      cracked.push_back(i), area += p.initial_volume[i] / (dim == 2 ? thickness : 1.0);
+    {
+      const double a = p.initial_volume[i] / (dim == 2 ? thickness : 1.0);
+      cracked.push_back(i), area += a;
+      // A particle's size in the x-y plane: its area's side (in 3D its volume's cube
+      // root).
+      size.push_back(dim == 2 ? std::sqrt(a) : std::cbrt(a));
+      largest = std::max(largest, size.back());
+    }
   if (cracked.empty())
     return result;
-  // The particles' spacing in the x-y plane (their mean area's side; in 3D the
-  // volume's cube root).
-  const double s =
+  result.spacing =
       dim == 2 ? std::sqrt(area / cracked.size()) : std::cbrt(area / cracked.size());
-  result.spacing = s;
-  // Clusters of particles within 1.5 spacings of each other, by union-find over
-  // square bins of that size.
+  // Clusters of particles within link_factor times the larger of their two sizes of
+  // each other (graded grids mix sizes), by union-find over square bins of the
+  // longest link.
   const std::size_t n = cracked.size();
   std::vector<std::size_t> root(n);
   std::iota(root.begin(), root.end(), 0);
@@ -102,7 +109,7 @@ CrackClusters crack_clusters(const ParticleStore<dim> &p, const unsigned int bod
       a = root[a] = root[root[a]];
     return a;
   };
-  const double link = 1.5 * s;
+  const double link = link_factor * largest;
   std::map<std::pair<long, long>, std::vector<std::size_t>> bins;
   const auto key = [&](const std::size_t k)
   {
@@ -124,7 +131,8 @@ CrackClusters crack_clusters(const ParticleStore<dim> &p, const unsigned int bod
         {
           const auto d =
               p.reference_position[cracked[k]] - p.reference_position[cracked[m]];
-          if (d[0] * d[0] + d[1] * d[1] <= link * link)
+          const double pair = link_factor * std::max(size[k], size[m]);
+          if (d[0] * d[0] + d[1] * d[1] <= pair * pair)
             root[find(k)] = find(m);
         }
       }
@@ -200,7 +208,7 @@ double crack_tip_distance(const ParticleStore<dim> &p, const unsigned int body,
                           const double thickness, const Point<2> &origin,
                           const Tensor<1, 2> &direction, const double threshold)
 {
-  const CrackClusters cracks = crack_clusters(p, body, thickness, threshold);
+  const CrackClusters cracks = crack_clusters(p, body, thickness, threshold, 1.75);
   const double reach         = 1.5 * cracks.spacing;
   const auto from_origin     = [&](const std::size_t i)
   {
@@ -320,9 +328,9 @@ template std::string ramped_velocity<3>(double, double, double);
 template std::string load_fell_below(const SceneState<2> &, unsigned int, double);
 template std::string load_fell_below(const SceneState<3> &, unsigned int, double);
 template CrackClusters crack_clusters(const ParticleStore<2> &, unsigned int, double,
-                                      double);
+                                      double, double);
 template CrackClusters crack_clusters(const ParticleStore<3> &, unsigned int, double,
-                                      double);
+                                      double, double);
 template double crack_tip_distance(const ParticleStore<2> &, unsigned int, double,
                                    const Point<2> &, const Tensor<1, 2> &, double);
 template double crack_tip_distance(const ParticleStore<3> &, unsigned int, double,

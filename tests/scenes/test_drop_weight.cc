@@ -33,6 +33,9 @@ TEST(DropWeight, BadInputNamesTheEntry)
   const std::string field = error({"Contact/Type=none"});
   EXPECT_NE(field.find("Scene/drop weight/Supports"), std::string::npos) << field;
   EXPECT_NE(field.find("Contact/Type = none"), std::string::npos) << field;
+  const std::string kind =
+      error({"Contact/Type=none", "Scene/drop weight/Support kind=cylinders"});
+  EXPECT_NE(kind.find("Scene/drop weight/Support kind"), std::string::npos) << kind;
   // The hammer's density is the scene's: a density in the file is refused, naming it.
   const std::string density = error({"Material 2/Density=7800"});
   EXPECT_NE(density.find("Material 2/Density"), std::string::npos) << density;

@@ -65,6 +65,39 @@ TEST(SceneTools, CrackTipFollowsOnlyTheCrackFromTheNotch)
   EXPECT_NEAR(tip(), 0.0295, 1e-12);
 }
 
+TEST(SceneTools, CrackTipFollowsACrackThroughCellsTwiceAsTallAsWide)
+{
+  // Cells 1.25 mm wide and 2.5 mm tall with two particles per direction at the
+  // Gauss points (0.211 and 0.789 of the cell), as the drop-weight ligament has
+  // them: a column of failed particles steps 1.056 and 1.444 mm upwards, 1.63 times
+  // the particles' size (their area's side, 0.884 mm).
+  const double w = 1.25e-3, h = 2.5e-3, g = 0.5 - 0.5 / std::sqrt(3.0);
+  ParticleStore<2> p;
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 12; ++j)
+      for (const double a : {g, 1 - g})
+        for (const double b : {g, 1 - g})
+          p.add(Point<2>(w * (i + a), h * (j + b)), 1.0, 0.25 * w * h * 0.1, 0, 0);
+  const double x         = w * (4 + g);
+  const auto fail_column = [&](const double y0, const double y1, const double d)
+  {
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (std::abs(p.reference_position[i][0] - x) < 1e-9 &&
+          p.reference_position[i][1] > y0 && p.reference_position[i][1] < y1)
+        p.damage[i] = d;
+  };
+  const Point<2> notch_tip(x, 0.0);
+  const auto tip = [&]() {
+    return scenes::crack_tip_distance(p, 0, 0.1, notch_tip, Tensor<1, 2>({0.0, 1.0}));
+  };
+  fail_column(0, 0.02, 1);
+  // The highest particle below 20 mm: cell 7, upper Gauss point.
+  EXPECT_NEAR(tip(), h * (7 + 1 - g), 1e-12);
+  // One intact particle stops it: the crack above is not the notch's.
+  fail_column(h * 3, h * 3 + 0.5 * h, 0);
+  EXPECT_NEAR(tip(), h * (2 + 1 - g), 1e-12);
+}
+
 TEST(SceneTools, RayleighSpeedSolvesTheRayleighEquation)
 {
   // A Poisson solid (nu = 0.25): c_R / c_s = sqrt(2 - 2 / sqrt(3)) = 0.9194.

@@ -46,7 +46,9 @@ template <int dim>
 std::string load_fell_below(const SceneState<dim> &state, unsigned int body,
                             double fraction);
 /// The particles of a body at or above a damage threshold, in clusters of particles
-/// linked where they lie within 1.5 spacings of each other (reference x-y plane).
+/// linked where they lie within a link factor times the larger of their own sizes of
+/// each other (reference x-y plane; a particle's size is the side of its initial area,
+/// volume over thickness in 2D, or the cube root of its volume in 3D).
 struct CrackClusters
 {
   /// The particles' spacing: the square root of their mean initial area (volume
@@ -56,12 +58,17 @@ struct CrackClusters
 };
 template <int dim>
 CrackClusters crack_clusters(const ParticleStore<dim> &particles, unsigned int body,
-                             double thickness, double threshold = 0.99);
+                             double thickness, double threshold = 0.99,
+                             double link_factor = 1.5);
 /**
  * How far a crack that starts at @p origin has run along the unit @p direction (m, in
  * the reference configuration): the largest projection onto @p direction, from
  * @p origin, of the particles of the crack_clusters() that hold a particle within 1.5
- * spacings of @p origin; 0 while none does. Used for a crack tip on a ligament.
+ * spacings of @p origin; 0 while none does. Used for a crack tip on a ligament. The
+ * clusters link particles within 1.75 of their sizes: on cells up to twice as long
+ * as wide, two particles per direction sit up to 1.63 sizes apart along the longer
+ * side, and a crack across them must stay one cluster; 2 sizes would bridge an intact
+ * particle in square cells.
  */
 template <int dim>
 double crack_tip_distance(const ParticleStore<dim> &particles, unsigned int body,
