@@ -94,7 +94,8 @@ struct DropWeightEntries
              "scene), not the hammer's Body N/Material; 0 without a head.");
     list.add("Hammer gap", gap, "0", Patterns::Double(),
              "The distance (m) between the hammer's face and the beam's top face at "
-             "t = 0, >= 0.");
+             "t = 0, >= 0. Particles fill the grid's cells at fixed points, so a gap "
+             "below their spacing at the face places the same particles.");
     list.add("Impact velocity", velocity, "2.64", Patterns::Double(),
              "The hammer's downward speed at first contact (m/s), > 0.");
     list.add("Crack speed gauge length", gauge, "0.01", Patterns::Double(),
