@@ -102,6 +102,36 @@ def column_max(rows, column):
     return max(values) if values else None
 
 
+def scb_curve_checks(rows):
+    """From an SCB history: the largest load once the load has fallen below 80 % of
+    its peak (over the peak; a softening tail stays below 0.8), and the loading
+    branch's slope over the last third of the travel from 0.01 mm to the first
+    softening against the first third (1 for a straight branch)."""
+    u = [-float(r["displacement_load_y"]) for r in rows]
+    load = [float(r["force_load_y"]) for r in rows]
+    damage = [float(r["damage_total"]) for r in rows]
+    if not load:
+        return None, None
+    i_peak = max(range(len(load)), key=lambda i: load[i])
+    peak = load[i_peak]
+    below = next((i for i in range(i_peak, len(load)) if load[i] < 0.8 * peak), None)
+    tail = max(load[below:]) / peak if below is not None else None
+    soft = next((i for i in range(len(rows)) if damage[i] > 0), len(rows))
+    span = [i for i in range(soft) if u[i] >= 1e-5]
+    slope_ratio = None
+    if len(span) >= 6:
+        third = len(span) // 3
+
+        def slope(ids):
+            n = len(ids)
+            mu = sum(u[i] for i in ids) / n
+            mf = sum(load[i] for i in ids) / n
+            return sum((u[i] - mu) * (load[i] - mf) for i in ids) / \
+                sum((u[i] - mu) ** 2 for i in ids)
+        slope_ratio = slope(span[-third:]) / slope(span[:third])
+    return tail, slope_ratio
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--build", default="build")
@@ -191,8 +221,10 @@ def main():
     if wanted("semicircular_bending"):
         rows_all, shown, summaries = [], [], []
         for angle in (0, 30, 60):
-            s, _, cmd = case(f"semicircular_bending_{angle}", "prm/semicircular_bending.prm",
-                             [f"Scene/semicircular bending/Notch angle={angle}"])
+            s, rows, cmd = case(f"semicircular_bending_{angle}",
+                                "prm/semicircular_bending.prm",
+                                [f"Scene/semicircular bending/Notch angle={angle}"])
+            tail, slope_ratio = scb_curve_checks(rows)
             summaries.append(s)
             shown.append(cmd)
             rows_all += [
@@ -201,7 +233,15 @@ def main():
                 (f"{angle} degrees: `fracture_energy_ratio`, snapped back, drift", "1, 0, 0",
                  f"{fmt(s.get('fracture_energy_ratio'), 3)}, "
                  f"{fmt(s.get('eigensoftening_snap_back_particles'))}, "
-                 f"{fmt(s.get('max_energy_drift'), 3)}")]
+                 f"{fmt(s.get('max_energy_drift'), 3)}"),
+                (f"{angle} degrees: largest load after it fell below 0.8 of the peak, "
+                 "over the peak", "below 0.8 (a softening tail)", fmt(tail, 3)),
+                (f"{angle} degrees: softened share of the notch tip to the arc's top",
+                 "1 (the crack reaches the loading roller)",
+                 fmt(s.get("softened_ligament_share"), 3)),
+                (f"{angle} degrees: loading slope, last third over first third of the "
+                 "travel from 0.01 mm to the first softening", "1 within 0.05",
+                 fmt(slope_ratio, 3))]
         lines = ["| quantity | reference | this build |", "|---|---|---|"]
         lines += [f"| {q} | {r} | {m} |" for q, r, m in rows_all]
         lines.append("")

@@ -1,5 +1,5 @@
-#include <lme_mpm/base/input.h>
 #include <lme_mpm/base/checkpoint.h>
+#include <lme_mpm/base/input.h>
 
 #include <filesystem>
 #include <fstream>
@@ -11,7 +11,7 @@ namespace checkpoint
 namespace
 {
 // Seven characters name the format, the eighth is its version.
-const char magic[9] = "LMEMPMCA";
+const char magic[9] = "LMEMPMCB";
 } // namespace
 
 void write(const std::string &file, const std::function<void(Archive &)> &serialize)

@@ -2,6 +2,8 @@
 #include <lme_mpm/base/parameters.h>
 #include <lme_mpm/contact/body_contact.h>
 
+#include <algorithm>
+
 namespace lme_mpm
 {
 namespace
@@ -10,7 +12,7 @@ namespace
 struct ContactEntries
 {
   std::string type, normal, pairs, exchange;
-  double friction = 0, volume_fraction = 0.9;
+  double friction = 0, volume_fraction = 0.9, tolerance = 1e-4;
   unsigned int sweeps = 8;
 
   void entries(EntryList &list)
@@ -43,8 +45,13 @@ struct ContactEntries
              "velocities (the particles); gains energy while bodies unload on fine "
              "grids (doc/contact.md).");
     list.add("Exchange sweeps", sweeps, "8", Patterns::Integer(1, 1000),
-             "'projected' exchange: Jacobi sweeps over the contact pairs per step, "
-             "each a pass over the particles near contact. In 1..1000.");
+             "'projected' exchange: at most this many Jacobi sweeps over the contact "
+             "pairs per step, each a pass over the particles near contact. In 1..1000.");
+    list.add("Exchange tolerance", tolerance, "1e-4", Patterns::Double(0),
+             "'projected' exchange: the sweeps stop once no pair's impulse changed in "
+             "a sweep by more than this fraction of the largest. What an unfinished "
+             "exchange leaves approaching is removed in the next step as an inelastic "
+             "impact, which the energy balance shows as lost work. In [0, 1].");
     list.add("Contact volume fraction", volume_fraction, "0.9", Patterns::Double(0),
              "Two bodies at a node are in contact when the particle volume the node "
              "sees, sum_p N_Ip V_p over both, is at least this fraction of the node's "
@@ -89,6 +96,8 @@ void BodyContact<dim>::parse_parameters(ParameterHandler &prm, const double thic
   const bool multi_field = in.type == "multi-field";
   projected              = in.exchange == "projected";
   sweeps                 = in.sweeps;
+  tolerance              = in.tolerance;
+  input::require_range(in.tolerance, 0, 1, false, "Contact/Exchange tolerance");
   input::require_range(in.friction, 0, 1e3, false, "Contact/Friction coefficient");
   input::require_range(in.volume_fraction, 0, 1.5, false,
                        "Contact/Contact volume fraction");
@@ -136,9 +145,13 @@ void BodyContact<dim>::exchange_projected(const double mass_tolerance, const dou
   exchange_pairs.clear();
   for (const auto &q : pairs.list())
     exchange_pairs.push_back({q.a, q.b, bodies.prescribed(q.body_a),
-                              bodies.prescribed(q.body_b), q.normal, q.friction});
+                              bodies.prescribed(q.body_b), q.normal, q.friction, q.key});
   projected_exchange.apply(exchange_pairs, transfer, particles, fields.touches_shared(),
-                           particles.velocity, pair_impulse, sweeps, mass_tolerance);
+                           particles.velocity, pair_impulse, sweeps, tolerance,
+                           mass_tolerance);
+  sweep_count += projected_exchange.last_sweeps();
+  ++exchange_count;
+  max_sweeps_used           = std::max(max_sweeps_used, projected_exchange.last_sweeps());
   const FieldLayout &layout = transfer.nodes().layout;
   for (std::size_t i = 0; i < pairs.size(); ++i)
   {
@@ -215,8 +228,14 @@ void BodyContact<dim>::on_initial_accelerations(const double mass_tolerance)
 template <int dim>
 void BodyContact<dim>::add_results(std::map<std::string, double> &results) const
 {
-  if (active())
-    results["contact_shared_nodes"] = fields.shared_nodes().size();
+  if (!active())
+    return;
+  results["contact_shared_nodes"] = fields.shared_nodes().size();
+  if (projected && exchange_count > 0)
+  {
+    results["contact_mean_exchange_sweeps"] = double(sweep_count) / exchange_count;
+    results["contact_max_exchange_sweeps"]  = max_sweeps_used;
+  }
 }
 
 template class BodyContact<2>;

@@ -58,14 +58,13 @@ void ProjectedExchange<dim>::respond(const std::vector<ExchangePair<dim>> &pairs
 }
 
 template <int dim>
-void ProjectedExchange<dim>::apply(const std::vector<ExchangePair<dim>> &pairs,
-                                   GridTransfer<dim> &transfer,
-                                   const ParticleStore<dim> &particles,
-                                   const std::vector<std::uint8_t> &touches,
-                                   std::vector<Tensor<1, dim>> &velocity,
-                                   std::vector<Tensor<1, dim>> &impulse_on_a,
-                                   const unsigned int sweeps, const double mass_tolerance)
+void ProjectedExchange<dim>::apply(
+    const std::vector<ExchangePair<dim>> &pairs, GridTransfer<dim> &transfer,
+    const ParticleStore<dim> &particles, const std::vector<std::uint8_t> &touches,
+    std::vector<Tensor<1, dim>> &velocity, std::vector<Tensor<1, dim>> &impulse_on_a,
+    const unsigned int sweeps, const double tolerance, const double mass_tolerance)
 {
+  sweeps_done                   = 0;
   NodalFields<dim> &nodes       = transfer.nodes();
   const Connectivity<dim> &conn = transfer.connectivity();
   const std::size_t n_fields    = nodes.mass.size();
@@ -74,10 +73,26 @@ void ProjectedExchange<dim>::apply(const std::vector<ExchangePair<dim>> &pairs,
   scale.resize(n_fields);
   in_pair.assign(n_fields, 0);
   delta.resize(particles.size());
+  // Warm start: a pair in contact in the last step starts from the impulse it had
+  // then (quasi-static loading changes it little from step to step).
   impulse_on_a.assign(pairs.size(), Tensor<1, dim>());
+  bool warm = false;
+  for (std::size_t i = 0; i < pairs.size(); ++i)
+  {
+    const auto it = std::lower_bound(last_keys.begin(), last_keys.end(), pairs[i].key);
+    if (it != last_keys.end() && *it == pairs[i].key)
+    {
+      impulse_on_a[i] = last_impulses[it - last_keys.begin()];
+      warm            = true;
+    }
+  }
   next.resize(pairs.size());
   if (pairs.empty())
+  {
+    last_keys.clear();
+    last_impulses.clear();
     return;
+  }
   // The sweeps visit only the particles near contact, listed once.
   touching.clear();
   for (std::size_t p = 0; p < particles.size(); ++p)
@@ -116,13 +131,13 @@ void ProjectedExchange<dim>::apply(const std::vector<ExchangePair<dim>> &pairs,
   const std::vector<Tensor<1, dim>> &rate = nodes.rate;
   for (unsigned int sweep = 0; sweep < sweeps; ++sweep)
   {
-    if (sweep > 0)
+    if (sweep > 0 || warm)
       respond(pairs, transfer, particles, touches, impulse_on_a);
     for (std::size_t i = 0; i < pairs.size(); ++i)
     {
       const auto &q     = pairs[i];
       Tensor<1, dim> ra = rate[q.a], rb = rate[q.b];
-      if (sweep > 0)
+      if (sweep > 0 || warm)
       {
         if (in_pair[q.a])
           ra += response[q.a] / nodes.mass[q.a];
@@ -145,9 +160,33 @@ void ProjectedExchange<dim>::apply(const std::vector<ExchangePair<dim>> &pairs,
         jt_new *= size > 0 ? cap / size : 0.0;
       next[i] = jt_new - jn_new * q.normal;
     }
+    // Converged once no impulse changes by more than the tolerance's share of the
+    // largest: the rates then approach by at most that share of what was removed.
+    double change = 0, largest = 0;
+    for (std::size_t i = 0; i < pairs.size(); ++i)
+    {
+      change  = std::max(change, (next[i] - impulse_on_a[i]).norm());
+      largest = std::max(largest, next[i].norm());
+    }
     std::swap(next, impulse_on_a);
+    ++sweeps_done;
+    if (change <= tolerance * largest)
+      break;
   }
   respond(pairs, transfer, particles, touches, impulse_on_a);
+  std::vector<std::size_t> order(pairs.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+    order[i] = i;
+  std::sort(order.begin(), order.end(),
+            [&](const std::size_t i, const std::size_t j)
+            { return pairs[i].key < pairs[j].key; });
+  last_keys.resize(pairs.size());
+  last_impulses.resize(pairs.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+  {
+    last_keys[i]     = pairs[order[i]].key;
+    last_impulses[i] = impulse_on_a[order[i]];
+  }
   for (const std::size_t p : touching)
   {
     velocity[p] += delta[p];

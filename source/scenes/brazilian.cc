@@ -58,8 +58,9 @@ struct BrazilianEntries
              "diameter (m), in (0, D).");
     list.add("Stop at load fraction", stop_fraction, "0.3", Patterns::Double(),
              "Once the load (the top strip's force in a history row) has fallen below "
-             "this fraction of its peak, the run ends, as a testing machine stops after "
-             "the specimen fails; in [0, 1), 0: run to the end time.");
+             "this fraction of its peak and some particle has begun to soften, the run "
+             "ends, as a testing machine stops after the specimen fails; in [0, 1), 0: "
+             "run to the end time.");
     list.add("Elastic zone depth", zone_depth, "0", Patterns::Double(),
              "The disc's particles within this depth (m) of a strip's contact arc, over "
              "the strip's width plus this depth on each side, are made of the elastic "

@@ -69,9 +69,17 @@ std::string load_fell_below(const SceneState<dim> &state, const unsigned int bod
   if (fraction <= 0 || state.contact_forces == nullptr)
     return {};
   const double peak = (*state.peak_contact_forces)[body];
-  if (peak > 0 && (*state.contact_forces)[body].norm() < fraction * peak)
-    return "the load fell below " + number(fraction) + " of its peak";
-  return {};
+  if (!(peak > 0 && (*state.contact_forces)[body].norm() < fraction * peak))
+    return {};
+  // A load that dips while the contact forms (before anything softens) is not the
+  // specimen failing.
+  if (state.particles != nullptr)
+  {
+    const auto &damage = state.particles->damage;
+    if (std::none_of(damage.begin(), damage.end(), [](const double d) { return d > 0; }))
+      return {};
+  }
+  return "the load fell below " + number(fraction) + " of its peak";
 }
 
 template <int dim>

@@ -75,8 +75,8 @@ struct SemicircularBendingEntries
     list.add("Elastic zone material", zone_material, "2", Patterns::Integer(1),
              "The number N of the 'Material N' of the elastic zones.");
     list.add("Stop at load fraction", stop_fraction, "0.3", Patterns::Double(),
-             "Once the load has fallen below this fraction of its peak, the run ends; in "
-             "[0, 1), 0: run to the end time.");
+             "Once the load has fallen below this fraction of its peak and some particle "
+             "has begun to soften, the run ends; in [0, 1), 0: run to the end time.");
     list.add("Specimen", specimen, "specimen", Patterns::Anything(),
              "The Body N/Name of the specimen.");
     list.add("Loading roller", load, "load", Patterns::Anything(),

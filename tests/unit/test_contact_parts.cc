@@ -22,7 +22,8 @@ struct TwoBlocks
   std::unique_ptr<GridTransfer<2>> transfer;
   std::unique_ptr<BodyContact<2>> contact;
 
-  explicit TwoBlocks(const std::string &exchange)
+  explicit TwoBlocks(const std::string &exchange, const std::string &sweeps = "8",
+                     const std::string &tolerance = "1e-4")
   {
     grid.reinit(Point<2>(0, 0),
                 {{std::vector<double>(10, 0.1), std::vector<double>(6, 0.1)}});
@@ -46,6 +47,8 @@ struct TwoBlocks
     prm.set("Type", "multi-field");
     prm.set("Exchange", exchange);
     prm.set("Contact volume fraction", "0.1");
+    prm.set("Exchange sweeps", sweeps);
+    prm.set("Exchange tolerance", tolerance);
     prm.leave_subsection();
     bodies.parse_parameters(prm, 2, {});
     ShapeFunctionContext<2> context;
@@ -154,6 +157,52 @@ TEST(BodyContact, ProjectedExchangeKeepsParticleMomentum)
   const auto &f = s.contact->step_forces();
   EXPECT_NEAR((f[0] + f[1]).norm(), 0, 1e-9 * f[0].norm());
   EXPECT_LT(f[0][0], 0); // the left block is pushed back
+}
+
+TEST(BodyContact, ProjectedExchangeSweepsUntilTheRatesStopApproaching)
+{
+  // The largest approach of a pair's projected rates, after one exchange, relative to
+  // the largest before it: one sweep leaves some (the iteration is under-relaxed where
+  // the contact varies from node to node), sweeps to a tight tolerance remove it.
+  const auto exchange = [](const std::string &sweeps, const std::string &tolerance,
+                           const unsigned int calls, std::map<std::string, double> &r)
+  {
+    TwoBlocks s("projected", sweeps, tolerance);
+    ExplicitNewmark newmark;
+    s.transfer->predict_rates(newmark, 0, 1e-20);
+    ContactPairs<2> pairs;
+    pairs.set_up(s.grid, "larger volume", 0.1, 0.0, "", 2, 1.0);
+    pairs.find(s.contact->body_fields(), s.bodies, *s.transfer, s.particles, 1e-20);
+    const auto &rate    = s.transfer->nodes().rate;
+    const auto approach = [&]()
+    {
+      double worst = 0;
+      for (const auto &q : pairs.list())
+        worst = std::max(worst, (rate[q.a] - rate[q.b]) * q.normal);
+      return worst;
+    };
+    const double before = approach();
+    EXPECT_GT(before, 0.5);
+    // A second exchange on rates that no longer approach starts from the first one's
+    // impulses, which it must take back.
+    for (unsigned int c = 0; c < calls; ++c)
+      s.contact->on_rates(1e-20, 1e-4);
+    s.contact->add_results(r);
+    return approach() / before;
+  };
+  std::map<std::string, double> one, tight, again;
+  const double after_one   = exchange("1", "0", 1, one);
+  const double after_tight = exchange("1000", "1e-10", 1, tight);
+  const double after_again = exchange("1000", "1e-10", 2, again);
+  std::cout << "approach left: one sweep " << after_one << ", to 1e-10 " << after_tight
+            << " (" << tight.at("contact_max_exchange_sweeps") << " sweeps), again "
+            << after_again << std::endl;
+  EXPECT_EQ(one.at("contact_max_exchange_sweeps"), 1);
+  EXPECT_GT(after_one, 1e-3);
+  EXPECT_LT(after_tight, 1e-8);
+  EXPECT_GT(tight.at("contact_max_exchange_sweeps"), 1);
+  EXPECT_LT(tight.at("contact_max_exchange_sweeps"), 1000);
+  EXPECT_LT(after_again, 1e-8);
 }
 
 TEST(ForceMeans, RowMeanIsTheImpulseOverTheIntervalAndPeaksAreKept)

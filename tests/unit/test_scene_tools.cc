@@ -114,3 +114,24 @@ TEST(SceneTools, RayleighSpeedSolvesTheRayleighEquation)
   EXPECT_NEAR(scenes::rayleigh_wave_speed(E, nu, rho, true),
               scenes::rayleigh_wave_speed(E_eff, nu_eff, rho, false), 1e-12);
 }
+
+TEST(SceneTools, LoadTestStopsOnlyOnceTheSpecimenSoftens)
+{
+  // A load that dips below the fraction of its peak while nothing has softened (the
+  // contact forming under a roller) does not end the run; the same dip after softening
+  // began does.
+  ParticleStore<2> p = block();
+  std::vector<Tensor<1, 2>> force(1, Tensor<1, 2>({0.0, -1.0}));
+  std::vector<double> peak(1, 5.0);
+  SceneState<2> state;
+  state.particles           = &p;
+  state.contact_forces      = &force;
+  state.peak_contact_forces = &peak;
+  EXPECT_EQ(scenes::load_fell_below(state, 0, 0.3), "");
+  p.damage[17] = 1e-6;
+  EXPECT_NE(scenes::load_fell_below(state, 0, 0.3), "");
+  // Above the fraction, or with a fraction of 0, it goes on.
+  force[0] = Tensor<1, 2>({0.0, -2.0});
+  EXPECT_EQ(scenes::load_fell_below(state, 0, 0.3), "");
+  EXPECT_EQ(scenes::load_fell_below(state, 0, 0.0), "");
+}

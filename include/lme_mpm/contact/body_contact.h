@@ -117,6 +117,7 @@ public:
   void serialize(Archive &ar)
   {
     pairs.serialize(ar);
+    projected_exchange.serialize(ar);
   }
 
   /// Pairs of fields in contact in the last step.
@@ -138,7 +139,11 @@ private:
   ContactForces<dim> forces;
   bool projected      = true;
   unsigned int sweeps = 8;
-  double rate_work    = 0;
+  double tolerance    = 1e-4;
+  /// Sweeps made and exchanges with pairs, for summary.json.
+  unsigned long sweep_count = 0, exchange_count = 0;
+  unsigned int max_sweeps_used = 0;
+  double rate_work             = 0;
   ProjectedExchange<dim> projected_exchange;
   std::vector<ExchangePair<dim>> exchange_pairs;
   std::vector<Tensor<1, dim>> pair_impulse;

@@ -38,9 +38,9 @@ void set_notch_crack(EntryWriter &writer, const std::string &body,
                      const std::string &polyline, const std::string &owner);
 /**
  * A load test's stop: once the contact force on body @p body (its mean over the last
- * history row) has fallen below @p fraction of its peak, the reason to end the run
- * (empty before, with a fraction of 0, or without contact), as a testing machine
- * stops after the specimen fails.
+ * history row) has fallen below @p fraction of its peak and some particle has begun
+ * to soften, the reason to end the run (empty before, with a fraction of 0, or without
+ * contact), as a testing machine stops after the specimen fails.
  */
 template <int dim>
 std::string load_fell_below(const SceneState<dim> &state, unsigned int body,
