@@ -58,6 +58,55 @@ void ProjectedExchange<dim>::respond(const std::vector<ExchangePair<dim>> &pairs
 }
 
 template <int dim>
+bool ProjectedExchange<dim>::warm_start(const std::vector<ExchangePair<dim>> &pairs,
+                                        std::vector<Tensor<1, dim>> &impulse_on_a) const
+{
+  // A pair in contact in the last step starts from the impulse it had then
+  // (quasi-static loading changes it little from step to step).
+  bool warm = false;
+  for (std::size_t i = 0; i < pairs.size(); ++i)
+  {
+    const auto it = std::lower_bound(last_keys.begin(), last_keys.end(), pairs[i].key);
+    if (it != last_keys.end() && *it == pairs[i].key)
+    {
+      impulse_on_a[i] = last_impulses[it - last_keys.begin()];
+      warm            = true;
+    }
+  }
+  return warm;
+}
+
+template <int dim>
+void ProjectedExchange<dim>::remember(const std::vector<ExchangePair<dim>> &pairs,
+                                      const std::vector<Tensor<1, dim>> &impulse_on_a)
+{
+  // ContactPairs lists the pairs in ascending key order, so the keys stay sorted for
+  // warm_start()'s binary search.
+  last_keys.resize(pairs.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i)
+    last_keys[i] = pairs[i].key;
+  Assert(std::is_sorted(last_keys.begin(), last_keys.end()),
+         dealii::ExcMessage("contact pairs out of key order"));
+  last_impulses = impulse_on_a;
+}
+
+namespace
+{
+template <int dim>
+bool settled(const std::vector<Tensor<1, dim>> &before,
+             const std::vector<Tensor<1, dim>> &after, const double tolerance)
+{
+  double change = 0, largest = 0;
+  for (std::size_t i = 0; i < after.size(); ++i)
+  {
+    change  = std::max(change, (after[i] - before[i]).norm());
+    largest = std::max(largest, after[i].norm());
+  }
+  return change <= tolerance * largest;
+}
+} // namespace
+
+template <int dim>
 void ProjectedExchange<dim>::apply(
     const std::vector<ExchangePair<dim>> &pairs, GridTransfer<dim> &transfer,
     const ParticleStore<dim> &particles, const std::vector<std::uint8_t> &touches,
@@ -73,24 +122,12 @@ void ProjectedExchange<dim>::apply(
   scale.resize(n_fields);
   in_pair.assign(n_fields, 0);
   delta.resize(particles.size());
-  // Warm start: a pair in contact in the last step starts from the impulse it had
-  // then (quasi-static loading changes it little from step to step).
   impulse_on_a.assign(pairs.size(), Tensor<1, dim>());
-  bool warm = false;
-  for (std::size_t i = 0; i < pairs.size(); ++i)
-  {
-    const auto it = std::lower_bound(last_keys.begin(), last_keys.end(), pairs[i].key);
-    if (it != last_keys.end() && *it == pairs[i].key)
-    {
-      impulse_on_a[i] = last_impulses[it - last_keys.begin()];
-      warm            = true;
-    }
-  }
+  const bool warm = warm_start(pairs, impulse_on_a);
   next.resize(pairs.size());
   if (pairs.empty())
   {
-    last_keys.clear();
-    last_impulses.clear();
+    remember(pairs, impulse_on_a);
     return;
   }
   // The sweeps visit only the particles near contact, listed once.
@@ -162,31 +199,14 @@ void ProjectedExchange<dim>::apply(
     }
     // Converged once no impulse changes by more than the tolerance's share of the
     // largest: the rates then approach by at most that share of what was removed.
-    double change = 0, largest = 0;
-    for (std::size_t i = 0; i < pairs.size(); ++i)
-    {
-      change  = std::max(change, (next[i] - impulse_on_a[i]).norm());
-      largest = std::max(largest, next[i].norm());
-    }
+    const bool converged = settled(impulse_on_a, next, tolerance);
     std::swap(next, impulse_on_a);
     ++sweeps_done;
-    if (change <= tolerance * largest)
+    if (converged)
       break;
   }
   respond(pairs, transfer, particles, touches, impulse_on_a);
-  std::vector<std::size_t> order(pairs.size());
-  for (std::size_t i = 0; i < order.size(); ++i)
-    order[i] = i;
-  std::sort(order.begin(), order.end(),
-            [&](const std::size_t i, const std::size_t j)
-            { return pairs[i].key < pairs[j].key; });
-  last_keys.resize(pairs.size());
-  last_impulses.resize(pairs.size());
-  for (std::size_t i = 0; i < order.size(); ++i)
-  {
-    last_keys[i]     = pairs[order[i]].key;
-    last_impulses[i] = impulse_on_a[order[i]];
-  }
+  remember(pairs, impulse_on_a);
   for (const std::size_t p : touching)
   {
     velocity[p] += delta[p];

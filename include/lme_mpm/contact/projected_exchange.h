@@ -74,6 +74,14 @@ private:
                const std::vector<std::uint8_t> &touches,
                const std::vector<Tensor<1, dim>> &impulse_on_a);
 
+  /// Starts each pair that was in contact in the last step from its impulse then;
+  /// true if any was.
+  bool warm_start(const std::vector<ExchangePair<dim>> &pairs,
+                  std::vector<Tensor<1, dim>> &impulse_on_a) const;
+  /// Keeps this step's pairs (in ascending key order) and impulses for the next.
+  void remember(const std::vector<ExchangePair<dim>> &pairs,
+                const std::vector<Tensor<1, dim>> &impulse_on_a);
+
   std::vector<Tensor<1, dim>> jump, response, delta, next;
   std::vector<double> scale;
   std::vector<std::uint8_t> in_pair;
