@@ -14,6 +14,7 @@
 
 #include <lme_mpm/fracture/neighbourhood.h>
 #include <lme_mpm/materials/linear_elastic.h>
+#include <lme_mpm/shape_functions/lme_simd.h>
 #include <lme_mpm/shape_functions/shape_function.h>
 #include <lme_mpm/simulation/run.h>
 #include <lme_mpm/simulation/simulation.h>
@@ -53,10 +54,12 @@ Block &block()
   return b;
 }
 
-std::unique_ptr<ShapeFunction<2>> make(const std::string &type, ParameterHandler &prm)
+std::unique_ptr<ShapeFunction<2>> make(const std::string &type, ParameterHandler &prm,
+                                       const std::string &lme_kernel = "auto")
 {
   prm.enter_subsection("Shape functions");
   ShapeFunctionRegistry<2>::instance().declare_all(prm);
+  prm.set("LME kernel", lme_kernel);
   ShapeFunctionContext<2> context;
   context.grid = &block().grid;
   auto sf      = ShapeFunctionRegistry<2>::instance().create(type, prm, context);
@@ -64,11 +67,12 @@ std::unique_ptr<ShapeFunction<2>> make(const std::string &type, ParameterHandler
   return sf;
 }
 
-void shape_functions(benchmark::State &state, const std::string &type, const bool warm)
+void shape_function_pass(benchmark::State &state, const std::string &type,
+                         const bool warm, const std::string &lme_kernel = "auto")
 {
   MultithreadInfo::set_thread_limit(1);
   ParameterHandler prm;
-  auto sf = make(type, prm);
+  auto sf = make(type, prm, lme_kernel);
   auto &P = block().particles;
   Connectivity<2> conn;
   conn.resize(P.size(), sf->max_nodes_per_particle());
@@ -116,6 +120,34 @@ void neighbourhood(benchmark::State &state)
   for (auto _ : state)
     nb.build(block().particles.position, 2 * h);
   state.SetItemsProcessed(state.iterations() * block().particles.size());
+}
+
+/// The LME exponential pass alone (scalar std::exp or the SIMD one) over rows of 24
+/// nodes, the 2D support at gamma 1.8: items are nodes.
+void lme_exponential_pass(benchmark::State &state, const bool simd)
+{
+  const auto *kernels = simd ? lme_mpm::shape_functions::lme_simd::avx2_kernels()
+                             : &lme_mpm::shape_functions::lme_simd::scalar_kernels();
+  if (kernels == nullptr)
+  {
+    state.SkipWithError("no AVX2 with FMA on this processor");
+    return;
+  }
+  constexpr unsigned int n = 24, rows = 1024;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> offset(-2.7, 2.7);
+  std::vector<double> y0(n * rows), y1(n * rows), a(n * rows), N(n);
+  for (unsigned int i = 0; i < n * rows; ++i)
+    y0[i] = offset(rng), y1[i] = offset(rng),
+    a[i] = -1.8 * (y0[i] * y0[i] + y1[i] * y1[i]);
+  lme_mpm::shape_functions::lme_simd::Moments2 m;
+  for (auto _ : state)
+    for (unsigned int r = 0; r < rows; ++r)
+    {
+      kernels->exponential(&a[r * n], &y0[r * n], &y1[r * n], n, 0.1, -0.2, N.data(), m);
+      benchmark::DoNotOptimize(m);
+    }
+  state.SetItemsProcessed(state.iterations() * n * rows);
 }
 
 /// A whole step of the throughput scene (benchmarks/throughput.prm).
@@ -172,6 +204,34 @@ void machine_flops(benchmark::State &state)
   state.SetItemsProcessed(state.iterations() * n * 16 * 2);
 }
 
+#if defined(__x86_64__) && defined(__GNUC__)
+/// As machine_flops with AVX2 fused multiply-adds, four doubles each, in the SIMD LME
+/// passes' instruction set: items are flops, two per lane and link.
+__attribute__((target("avx2,fma"))) void machine_fma_avx2(benchmark::State &state)
+{
+  if (!lme_mpm::shape_functions::lme_simd::avx2_kernels())
+  {
+    state.SkipWithError("no AVX2 with FMA on this processor");
+    return;
+  }
+  typedef double v4 __attribute__((vector_size(32)));
+  v4 x[12];
+  for (unsigned int k = 0; k < 12; ++k)
+    x[k] = v4{1.0, 1.1, 1.2, 1.3} + 0.01 * k;
+  const v4 a = {0.999999, 0.999999, 0.999999, 0.999999}, b = {1e-7, 1e-7, 1e-7, 1e-7};
+  const long n = 1 << 18;
+  for (auto _ : state)
+  {
+    for (long i = 0; i < n; ++i)
+      for (v4 &xi : x)
+        xi = xi * a + b;
+    benchmark::DoNotOptimize(x);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * n * 12 * 4 * 2);
+}
+#endif
+
 /// glibc exp over independent arguments (the LME kernel's calls): items are calls.
 void machine_exp(benchmark::State &state)
 {
@@ -191,13 +251,26 @@ void machine_exp(benchmark::State &state)
 
 BENCHMARK(machine_triad)->Unit(benchmark::kMillisecond);
 BENCHMARK(machine_flops)->Unit(benchmark::kMillisecond);
+#if defined(__x86_64__) && defined(__GNUC__)
+BENCHMARK(machine_fma_avx2)->Unit(benchmark::kMillisecond);
+#endif
 BENCHMARK(machine_exp)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(shape_functions, linear, "linear", true)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(shape_functions, ugimp, "ugimp", true)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(shape_functions, bspline, "bspline", true)
+BENCHMARK_CAPTURE(lme_exponential_pass, scalar, false)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(lme_exponential_pass, avx2, true)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(shape_function_pass, linear, "linear", true)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(shape_functions, lme_warm, "lme", true)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(shape_functions, lme_cold, "lme", false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(shape_function_pass, ugimp, "ugimp", true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(shape_function_pass, bspline, "bspline", true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(shape_function_pass, lme_warm, "lme", true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(shape_function_pass, lme_cold, "lme", false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(shape_function_pass, lme_warm_scalar, "lme", true, "scalar")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(shape_function_pass, lme_cold_scalar, "lme", false, "scalar")
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(cell_sort)->Unit(benchmark::kMillisecond);
 BENCHMARK(stress_update)->Unit(benchmark::kMillisecond);
 BENCHMARK(neighbourhood)->Unit(benchmark::kMillisecond);

@@ -153,9 +153,10 @@ void BackgroundGrid<dim>::reinit(const Point<dim> &lower,
   n_nodes_total = n_cells_total = 1;
   for (unsigned int d = 0; d < dim; ++d)
   {
-    const auto [mn, mx] = std::minmax_element(steps[d].begin(), steps[d].end());
-    h_min               = std::min(h_min, *mn);
-    uniform_h[d]        = (*mx - *mn <= 1e-12 * *mx) ? *mn : 0.0;
+    const auto [mn, mx]  = std::minmax_element(steps[d].begin(), steps[d].end());
+    h_min                = std::min(h_min, *mn);
+    uniform_h[d]         = (*mx - *mn <= 1e-12 * *mx) ? *mn : 0.0;
+    inverse_uniform_h[d] = uniform_h[d] > 0 ? 1 / uniform_h[d] : 0.0;
     // Uniform directions as lower + i h, so the upper corner carries no summed
     // round-off.
     coords[d].assign(1, lower[d]);

@@ -46,11 +46,12 @@ public:
                                           "the particle is outside the grid"));
       for (unsigned int d = 0; d < dim; ++d)
       {
-        const double h  = grid.spacing(d, i0[d]);
-        const double xi = (x[d] - grid.coordinates(d)[i0[d]]) / h;
-        w[d]            = {{1 - xi, xi}};
-        dw[d]           = {{-1 / h, 1 / h}};
-        n[d]            = 2;
+        // One division per direction (xi by the inverse: last-bit changes only).
+        const double inv_h = 1 / grid.spacing(d, i0[d]);
+        const double xi    = (x[d] - grid.coordinates(d)[i0[d]]) * inv_h;
+        w[d]               = {{1 - xi, xi}};
+        dw[d]              = {{-inv_h, inv_h}};
+        n[d]               = 2;
       }
       conn.n_nodes[p] = tensor_product_row<dim, 2>(
           grid, i0, n, w, dw, &conn.nodes[p * conn.stride], &conn.N[p * conn.stride],

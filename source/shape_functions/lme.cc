@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "lme_kernels.h"
+#include <lme_mpm/shape_functions/lme_simd.h>
 
 namespace lme_mpm
 {
@@ -52,6 +53,7 @@ struct LmeEntries
 {
   double gamma = 1.8, tolerance = 1e-6, newton_tolerance = 1e-12;
   unsigned int max_iterations = 50;
+  std::string kernel          = "auto";
 
   void entries(EntryList &list)
   {
@@ -72,6 +74,10 @@ struct LmeEntries
     list.add("LME maximum iterations", max_iterations, "50", Patterns::Integer(1, 1000),
              "Newton iterations allowed per particle and step; a particle needing more "
              "stops the run with an error.");
+    list.add("LME kernel", kernel, "auto", Patterns::Selection("auto|scalar"),
+             "Instruction set of the 2D exponential and moment passes: auto takes AVX2 "
+             "with FMA where the processor has them (results differ from scalar in "
+             "the last bits), scalar the portable code on any processor.");
   }
 };
 
@@ -93,7 +99,8 @@ public:
       : grid(*context.grid), gamma(in.gamma), newton_tol(in.newton_tolerance),
         cheap_step_limit(std::pow(24 * newton_tol, 0.25)),
         max_iterations(in.max_iterations),
-        radius_over_h(std::sqrt(-std::log(in.tolerance) / gamma))
+        radius_over_h(std::sqrt(-std::log(in.tolerance) / gamma)),
+        kernels(lme_simd::select_kernels(in.kernel))
   {
     // h of a cell is its smallest spacing, so the largest h over the grid is the
     // smallest over directions of the largest spacing in that direction.
@@ -133,6 +140,8 @@ public:
     // sized by this bound, so take the tighter count of the ball where it is smaller.
     max_nodes =
         std::min(max_nodes, lme_kernels::nodes_in_ball_bound<dim>(R_max, h_min_d));
+    // Rows in whole groups of four for the SIMD passes (lme_simd.h).
+    max_nodes = (max_nodes + 3) / 4 * 4;
   }
 
   std::string name() const override { return "lme"; }
@@ -155,6 +164,7 @@ public:
     Assert(conn.stride >= max_nodes, ExcInternalError());
     Scratch scratch;
     scratch.y.resize(max_nodes), scratch.a.resize(max_nodes), scratch.w.resize(max_nodes);
+    scratch.y0.resize(max_nodes), scratch.y1.resize(max_nodes);
     for (unsigned int d = 0; d < dim; ++d)
       scratch.y1d[d].resize(max_box_1d), scratch.w1d[d].resize(max_box_1d);
     for (std::size_t p = begin; p < end; ++p)
@@ -199,6 +209,7 @@ private:
   struct Scratch
   {
     std::vector<Tensor<1, dim>> y; ///< scaled offsets y_I = (x - x_I) / h of the nodes
+    std::vector<double> y0, y1;    ///< the y_I's components apart (2D kernels)
     std::vector<double> a;         ///< fixed part -gamma w_I |y_I|^2 of their exponents
     std::vector<double> w; ///< w_I = beta_I h^2 / gamma = (h / h_I)^2 (graded grids)
     std::array<std::vector<double>, dim> y1d; ///< (x_d - c_d[i]) / h in the index box
@@ -316,6 +327,8 @@ private:
         fail(particles, p, "more nodes in the support than max_nodes_per_particle()");
       nodes[n]     = node;
       scratch.y[n] = yn;
+      if constexpr (dim == 2)
+        scratch.y0[n] = yn[0], scratch.y1[n] = yn[1];
       scratch.a[n] = -gamma * q;
       scratch.w[n] = w;
       for (unsigned int d = 0; d < dim; ++d)
@@ -330,7 +343,55 @@ private:
       else
         return 1.0;
     };
-    if constexpr (dim == 2)
+    if constexpr (dim == 2 && !Graded)
+    {
+      // The kept nodes of a row are contiguous (u falls monotonically along it and q
+      // grows with |u|): each row's range grows or shrinks from the last one's by the
+      // support test itself, so exactly the nodes with q <= R2 are kept. sides
+      // collects the signs of the kept offsets for the hull test below.
+      unsigned int sides = 0;
+      double *y0 = scratch.y0.data(), *y1 = scratch.y1.data(), *a = scratch.a.data();
+      const double *u = y1d[0].data();
+      const int last  = static_cast<int>(count[0]) - 1;
+      int lo_prev = 0, hi_prev = -1;
+      for (unsigned int j = 0; j < count[1]; ++j)
+      {
+        const double v  = y1d[1][j];
+        const double qj = v * v;
+        if (qj > R2)
+          continue;
+        const auto inside = [&](const int i) { return u[i] * u[i] + qj <= R2; };
+        // Start from the last row's range (the first row: the node nearest x).
+        if (hi_prev < lo_prev)
+          lo_prev = hi_prev = std::clamp(static_cast<int>(u[0] + 0.5), 0, last);
+        int lo = lo_prev, hi = hi_prev;
+        while (lo > 0 && inside(lo - 1))
+          --lo;
+        while (lo <= hi && !inside(lo))
+          ++lo;
+        while (hi < last && inside(hi + 1))
+          ++hi;
+        while (hi >= lo && !inside(hi))
+          --hi;
+        if (hi < lo)
+          continue;
+        lo_prev = lo, hi_prev = hi;
+        if (n + (hi - lo + 1) > max_nodes)
+          fail(particles, p, "more nodes in the support than max_nodes_per_particle()");
+        const unsigned int row = (first[1] + j) * grid.node_stride(1) + first[0];
+        for (int i = lo; i <= hi; ++i, ++n)
+          nodes[n] = row + i, y0[n] = u[i], y1[n] = v, a[n] = -gamma * (u[i] * u[i] + qj);
+        sides |= (v < 0 ? 4u : 0u) | (v > 0 ? 8u : 0u) | (u[hi] < 0 ? 1u : 0u) |
+                 (u[lo] > 0 ? 2u : 0u);
+      }
+      if (sides != 15u)
+        for (unsigned int I = 0; I < n; ++I)
+          y_min[0] = std::min(y_min[0], y0[I]), y_max[0] = std::max(y_max[0], y0[I]),
+          y_min[1] = std::min(y_min[1], y1[I]), y_max[1] = std::max(y_max[1], y1[I]);
+      else
+        y_min[0] = y_min[1] = -1, y_max[0] = y_max[1] = 1;
+    }
+    else if constexpr (dim == 2)
     {
       for (unsigned int j = 0; j < count[1]; ++j)
       {
@@ -402,6 +463,54 @@ private:
     return (particles.lme_lambda[p] + particles.lme_lambda_rate[p] * dx) * h;
   }
 
+  /// evaluate() of lme_kernels.h; in 2D by the selected kernels.
+  void evaluate_2d_or(const Scratch &scratch, const unsigned int n,
+                      const Tensor<1, dim> &mu, double *N, double &F, Tensor<1, dim> &r,
+                      Tensor<2, dim> &J) const
+  {
+    if constexpr (dim == 2)
+    {
+      lme_simd::Moments2 m;
+      const double f_max = kernels.exponential(scratch.a.data(), scratch.y0.data(),
+                                               scratch.y1.data(), n, mu[0], mu[1], N, m);
+      F                  = f_max + normalise_moments(m, N, n, r, J);
+    }
+    else
+      evaluate(scratch.a.data(), scratch.y.data(), n, mu, N, F, r, J);
+  }
+
+  /// polynomial_step() of lme_kernels.h; in 2D by the selected kernels.
+  void polynomial_step_2d_or(const Scratch &scratch, const unsigned int n,
+                             const Tensor<1, dim> &step, double *N, double &F,
+                             Tensor<1, dim> &r, Tensor<2, dim> &J) const
+  {
+    if constexpr (dim == 2)
+    {
+      lme_simd::Moments2 m;
+      kernels.polynomial(scratch.y0.data(), scratch.y1.data(), n, step[0], step[1], r[0],
+                         r[1], N, m);
+      const double step_r = step * r;
+      F += step_r + normalise_moments(m, N, n, r, J);
+    }
+    else
+      polynomial_step(scratch.y.data(), n, step, N, F, r, J);
+  }
+
+  /// normalise() of lme_kernels.h from raw moments already summed (2D).
+  static double normalise_moments(const lme_simd::Moments2 &m, double *N,
+                                  const unsigned int n, Tensor<1, dim> &r,
+                                  Tensor<2, dim> &J)
+  {
+    const double inv_Z = 1 / m.Z;
+    for (unsigned int I = 0; I < n; ++I)
+      N[I] *= inv_Z;
+    r[0] = m.r0 * inv_Z, r[1] = m.r1 * inv_Z;
+    J[0][0] = m.j00 * inv_Z - r[0] * r[0];
+    J[0][1] = J[1][0] = m.j01 * inv_Z - r[0] * r[1];
+    J[1][1]           = m.j11 * inv_Z - r[1] * r[1];
+    return std::log(m.Z);
+  }
+
   /// Minimises log Z over mu from the warm start @p mu (see the class documentation),
   /// leaving the N_I in @p N. Stops the run if it does not converge to a regular J.
   Solution solve(const ParticleStore<dim> &particles, const std::size_t p,
@@ -426,7 +535,7 @@ private:
       return !(determinant(J) > 1e-12 * std::pow(scale, dim));
     };
     const Tensor<1, dim> *y = scratch.y.data();
-    evaluate(scratch.a.data(), y, n, mu, N, F, r, J);
+    evaluate_2d_or(scratch, n, mu, N, F, r, J);
     ++scratch.evaluations;
     while (!(r.norm() < newton_tol))
     {
@@ -446,12 +555,16 @@ private:
       // its |t| <= |step| (R / h + |r|) is below cheap_step_limit.
       if (step.norm() * (radius_over_h + r.norm()) < cheap_step_limit)
       {
-        polynomial_step(y, n, step, N, F, r, J);
+        polynomial_step_2d_or(scratch, n, step, N, F, r, J);
         mu += step;
         ++it, ++cheap;
         continue;
       }
       {
+        if constexpr (dim == 2)
+          if (!graded) // the uniform 2D set-up fills only y0 and y1
+            for (unsigned int I = 0; I < n; ++I)
+              scratch.y[I][0] = scratch.y0[I], scratch.y[I][1] = scratch.y1[I];
         Tensor<1, dim> w;
         for (unsigned int I = 0; I < n; ++I)
         {
@@ -480,7 +593,7 @@ private:
       for (unsigned int trial = 0;; ++trial)
       {
         mu_trial = mu + t * step;
-        evaluate(scratch.a.data(), y, n, mu_trial, N, F_trial, r_trial, J_trial);
+        evaluate_2d_or(scratch, n, mu_trial, N, F_trial, r_trial, J_trial);
         ++scratch.evaluations;
         const double d_phi  = r_trial * step;
         const bool decrease = F_trial <= F + c1 * t * slope + noise;
@@ -531,8 +644,18 @@ private:
     particles.lme_position[p]  = particles.position[p];
     if (!graded)
     {
-      for (unsigned int I = 0; I < n; ++I)
-        gradN[I] = (-N[I] * inv_h) * (J_inv * (scratch.y[I] - r));
+      if constexpr (dim == 2)
+        for (unsigned int I = 0; I < n; ++I)
+        {
+          // J_inv (y_I - r) scaled by -N_I / h, in the Tensor operations' order.
+          const double u = scratch.y0[I] - r[0], v = scratch.y1[I] - r[1];
+          const double c = -N[I] * inv_h;
+          gradN[I][0]    = c * (J_inv[0][0] * u + J_inv[0][1] * v);
+          gradN[I][1]    = c * (J_inv[1][0] * u + J_inv[1][1] * v);
+        }
+      else
+        for (unsigned int I = 0; I < n; ++I)
+          gradN[I] = (-N[I] * inv_h) * (J_inv * (scratch.y[I] - r));
       particles.lme_lambda_rate[p] = (2 * gamma * unit - J_inv) * (inv_h * inv_h);
       return;
     }
@@ -567,9 +690,10 @@ private:
   /// Largest |t| of a polynomial_step(): its relative error t^4 / 24 is below newton_tol.
   const double cheap_step_limit;
   const unsigned int max_iterations;
-  const double radius_over_h; ///< support radius R / h
-  double R_max = 0;           ///< largest support radius on this grid
-  bool graded  = false;       ///< nodal beta_I (any direction not uniform)
+  const double radius_over_h;        ///< support radius R / h
+  const lme_simd::Kernels2 &kernels; ///< the 2D passes, scalar or SIMD
+  double R_max = 0;                  ///< largest support radius on this grid
+  bool graded  = false;              ///< nodal beta_I (any direction not uniform)
   std::array<std::vector<double>, dim> node_h; ///< nodal spacings (graded grids)
   unsigned int max_nodes;
   unsigned int max_box_1d;

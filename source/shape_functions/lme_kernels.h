@@ -37,44 +37,22 @@ inline void exponentiate(double *v, const unsigned int n, const double shift)
 #endif
 }
 
-/**
- * Raw moments sum w_I, sum w_I y_I and the upper triangle of sum w_I y_I y_I^T. In 2D
- * the sums live in named scalars, which the compiler keeps in registers (summed into a
- * Tensor they went through memory on every node); the arithmetic and its order are the
- * generic loop's.
- */
+/// Raw moments sum w_I, sum w_I y_I and the upper triangle of sum w_I y_I y_I^T (3D;
+/// 2D goes through the passes of lme_simd.h).
 template <int dim>
 inline void raw_moments(const double *w, const Tensor<1, dim> *y, const unsigned int n,
                         double &Z, Tensor<1, dim> &r, Tensor<2, dim> &J)
 {
-  if constexpr (dim == 2)
+  Z = 0, r = 0, J = 0;
+  for (unsigned int I = 0; I < n; ++I)
   {
-    double z = 0, r0 = 0, r1 = 0, j00 = 0, j01 = 0, j11 = 0;
-    for (unsigned int I = 0; I < n; ++I)
+    const double e = w[I];
+    Z += e;
+    for (unsigned int i = 0; i < dim; ++i)
     {
-      const double e = w[I], y0 = y[I][0], y1 = y[I][1];
-      z += e;
-      r0 += e * y0;
-      j00 += e * y0 * y0;
-      j01 += e * y0 * y1;
-      r1 += e * y1;
-      j11 += e * y1 * y1;
-    }
-    Z = z, r[0] = r0, r[1] = r1, J[0][0] = j00, J[0][1] = j01, J[1][1] = j11;
-  }
-  else
-  {
-    Z = 0, r = 0, J = 0;
-    for (unsigned int I = 0; I < n; ++I)
-    {
-      const double e = w[I];
-      Z += e;
-      for (unsigned int i = 0; i < dim; ++i)
-      {
-        r[i] += e * y[I][i];
-        for (unsigned int j = i; j < dim; ++j)
-          J[i][j] += e * y[I][i] * y[I][j];
-      }
+      r[i] += e * y[I][i];
+      for (unsigned int j = i; j < dim; ++j)
+        J[i][j] += e * y[I][i] * y[I][j];
     }
   }
 }

@@ -105,7 +105,9 @@ public:
       return false;
     if (uniform_h[d] > 0)
     {
-      const long k = static_cast<long>((x - c.front()) / uniform_h[d]);
+      // A multiply in place of the division: off by at most one at a face, which the
+      // correction below settles against the coordinates themselves.
+      const long k = static_cast<long>((x - c.front()) * inverse_uniform_h[d]);
       i            = static_cast<unsigned int>(std::min<long>(k, c.size() - 2));
       // Round-off at a cell face: correct by one.
       if (x < c[i] && i > 0)
@@ -149,6 +151,7 @@ private:
 
   std::array<std::vector<double>, dim> coords;
   std::array<double, dim> uniform_h{};
+  std::array<double, dim> inverse_uniform_h{}; ///< 1 / uniform_h (0 where graded)
   std::array<unsigned int, dim> node_strides{};
   std::array<unsigned int, dim> cell_strides{};
   unsigned int n_nodes_total = 0, n_cells_total = 0;
