@@ -19,7 +19,7 @@ namespace lme_simd
 namespace
 {
 // One node's weight e at offset (u, v) into the moment sums, in the order of the
-// Tensor-based raw_moments() the scalar passes reproduce.
+// earlier 2D kernels, which the scalar passes reproduce bit for bit.
 inline void add_moments(Moments2 &m, const double e, const double u, const double v)
 {
   m.Z += e;

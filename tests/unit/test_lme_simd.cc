@@ -1,5 +1,5 @@
 // The 2D passes of the local max-ent evaluation: the SIMD ones against the scalar ones
-// (which are the Tensor-based kernels bit for bit), and the SIMD exponential's accuracy.
+// (the earlier 2D arithmetic bit for bit), and the SIMD exponential's accuracy.
 
 #include <lme_mpm/shape_functions/lme_simd.h>
 

@@ -44,7 +44,7 @@ struct Kernels2
 };
 
 /// The scalar passes: std::exp and the sums in node order, the arithmetic of the
-/// Tensor-based kernels in lme_kernels.h bit for bit.
+/// earlier 2D kernels (before the SIMD passes) bit for bit.
 const Kernels2 &scalar_kernels();
 
 /// The AVX2/FMA passes: four nodes per instruction, an exponential of its own (a
