@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Loading-rate convergence study of the semicircular bending scene.
+"""Loading-rate and time-step convergence study of the semicircular bending scene.
 
 The SCB specimen is loaded quasi-statically: the roller's travel to the peak takes far
 more than the specimen's wave transit. Explicit steps cost the same at any rate, so a
@@ -13,8 +13,14 @@ until the load first falls below half of it (the collapse), the ratio of kinetic
 strain energy at the peak, steps and wall time. Every run writes its history rows (where the
 peak is read and the stop is checked) at the same roller travel, 0.4 um.
 
+With --cfls it also runs each rate at those CFL numbers (Time/CFL, the step's fraction of
+the wave's cell transit): the step the file takes, 0.3, is far below the explicit limit,
+and the study shows how much larger a step keeps the answer. The reference is the
+slowest rate at the smallest CFL number.
+
     /usr/bin/python3 benchmarks/scb_rate_study.py --build build [--threads 2]
-        [--rates 0.002 0.005 0.01 0.02] [--angles 0 30 60] [--out output/scb_rates]
+        [--rates 0.002 0.005 0.01 0.02] [--cfls 0.3 0.6 0.9] [--angles 0 30 60]
+        [--out output/scb_rates]
 
 --reuse reads runs already in --out. Each run writes only history.csv and summary.json.
 """
@@ -34,20 +40,23 @@ def interval(rate):
     return 4e-7 / rate
 
 
-def run(build, out, angle, rate, threads, reuse):
-    directory = os.path.join(out, f"a{angle}_v{rate:g}")
+def run(build, out, angle, rate, cfl, threads, reuse):
+    directory = os.path.join(out, f"a{angle}_v{rate:g}" + ("" if cfl == 0.3 else
+                                                           f"_cfl{cfl:g}"))
     if not (reuse and os.path.exists(os.path.join(directory, "summary.json"))):
         start = time.time()
         subprocess.run([os.path.join(build, "lme-mpm"), "prm/semicircular_bending.prm",
                         "--threads", str(threads),
                         "--set", f"Scene/semicircular bending/Notch angle={angle}",
                         "--set", f"Scene/semicircular bending/Loading velocity={rate}",
+                        "--set", f"Time/CFL={cfl:g}",
                         "--set", f"Output/Directory={directory}",
                         "--set", f"Output/Output interval={interval(rate):.6g}",
                         "--set", "Output/Verbosity=0",
                         "--set", "Output/Write particle files=false"],
                        check=True, stdout=subprocess.DEVNULL)
-        print(f"angle {angle}, {rate * 1e3:g} mm/s: {time.time() - start:.0f} s",
+        print(f"angle {angle}, {rate * 1e3:g} mm/s, CFL {cfl:g}: "
+              f"{time.time() - start:.0f} s",
               file=sys.stderr)
     with open(os.path.join(directory, "summary.json")) as f:
         summary = json.load(f)
@@ -85,23 +94,25 @@ def main():
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--rates", type=float, nargs="+",
                         default=[0.002, 0.005, 0.01, 0.02])
+    parser.add_argument("--cfls", type=float, nargs="+", default=[0.3])
     parser.add_argument("--angles", type=int, nargs="+", default=[0, 30, 60])
     parser.add_argument("--reuse", action="store_true")
     args = parser.parse_args()
     os.chdir(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
     build = os.path.abspath(args.build)
-    rates = sorted(args.rates)
-    print("| angle | rate (mm/s) | peak (N) | vs slowest | energy ratio | vs slowest | "
-          "travel at peak (mm) | post-peak max diff / peak | peak to half peak (um) | "
-          "kinetic / strain at peak | steps | wall (s) |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    variants = [(rate, cfl) for rate in sorted(args.rates) for cfl in sorted(args.cfls)]
+    print("| angle | rate (mm/s) | CFL | peak (N) | vs reference | energy ratio | "
+          "vs reference | travel at peak (mm) | post-peak max diff / peak | "
+          "peak to half peak (um) | kinetic / strain at peak | steps | wall (s) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for angle in args.angles:
-        results = [(rate, run(build, args.out, angle, rate, args.threads, args.reuse))
-                   for rate in rates]
+        results = [((rate, cfl), run(build, args.out, angle, rate, cfl, args.threads,
+                                     args.reuse))
+                   for rate, cfl in variants]
         s0, u0, F0, _, _ = results[0][1]
         peak0 = max(F0)
         i0 = F0.index(peak0)
-        for rate, (s, u, F, kin, strain) in results:
+        for (rate, cfl), (s, u, F, kin, strain) in results:
             peak = max(F)
             i = F.index(peak)
             # Post-peak: the common travel after the slowest run's peak.
@@ -115,7 +126,7 @@ def main():
             ratio0 = s0.get("fracture_energy_ratio", float("nan"))
             ke = kin[i] / strain[i] if strain[i] > 0 else float("nan")
             half = next((u[k] for k in range(i, len(u)) if F[k] < 0.5 * peak), u[-1])
-            print(f"| {angle} | {rate * 1e3:g} | {peak:.1f} | {100 * (peak / peak0 - 1):+.2f} % "
+            print(f"| {angle} | {rate * 1e3:g} | {cfl:g} | {peak:.1f} | {100 * (peak / peak0 - 1):+.2f} % "
                   f"| {ratio:.3f} | {100 * (ratio / ratio0 - 1):+.2f} % | {1e3 * u[i]:.4f} "
                   f"| {diff / peak0:.3f} | {1e6 * (half - u[i]):.1f} | {ke:.2e} | {int(s['steps'])} "
                   f"| {s['wall_seconds']:.0f} |")

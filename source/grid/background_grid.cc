@@ -172,6 +172,25 @@ void BackgroundGrid<dim>::reinit(const Point<dim> &lower,
   for (unsigned int d = 0; d < dim; ++d)
     for (std::size_t i = 0; i + 1 < coords[d].size(); ++i)
       h_max = std::max(h_max, spacing(d, i));
+  for (unsigned int d = 0; d < dim; ++d)
+  {
+    bucket_cell[d].clear();
+    inverse_bucket_width[d] = 0;
+    if (uniform_h[d] > 0)
+      continue;
+    const auto &c      = coords[d];
+    const double width = *std::min_element(steps[d].begin(), steps[d].end());
+    const auto n       = static_cast<std::size_t>((c.back() - c.front()) / width) + 1;
+    inverse_bucket_width[d] = 1 / width;
+    for (std::size_t b = 0; b < n; ++b)
+    {
+      const double x = c.front() + b * width;
+      const long k =
+          static_cast<long>(std::upper_bound(c.begin(), c.end(), x) - c.begin()) - 1;
+      bucket_cell[d].push_back(
+          static_cast<unsigned int>(std::clamp<long>(k, 0, c.size() - 2)));
+    }
+  }
 
   std::vector<std::vector<double>> step_list(steps.begin(), steps.end());
   tria.clear();
@@ -210,10 +229,17 @@ template <int dim>
 bool BackgroundGrid<dim>::locate_graded(const double x, const unsigned int d,
                                         unsigned int &i) const
 {
-  const auto &c = coords[d];
-  const auto it = std::upper_bound(c.begin(), c.end(), x);
-  const long k  = static_cast<long>(it - c.begin()) - 1;
-  i             = static_cast<unsigned int>(std::clamp<long>(k, 0, c.size() - 2));
+  // x is inside the grid (locate() checked); the bucket's cell is at most a step or two
+  // off (a bucket is no wider than a cell; rounding of the product), settled against
+  // the coordinates: c[i] <= x < c[i + 1], or the last cell for x on the upper face.
+  const auto &c       = coords[d];
+  const auto &buckets = bucket_cell[d];
+  const auto b = static_cast<std::size_t>((x - c.front()) * inverse_bucket_width[d]);
+  i            = buckets[std::min(b, buckets.size() - 1)];
+  while (i > 0 && x < c[i])
+    --i;
+  while (i + 2 < c.size() && x >= c[i + 1])
+    ++i;
   return true;
 }
 

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "lme_kernels.h"
+#include "lme_support.h"
 #include <lme_mpm/shape_functions/lme_simd.h>
 
 namespace lme_mpm
@@ -96,84 +97,44 @@ public:
   }
 
   LME(const LmeEntries &in, const ShapeFunctionContext<dim> &context)
-      : grid(*context.grid), gamma(in.gamma), newton_tol(in.newton_tolerance),
+      : gamma(in.gamma), newton_tol(in.newton_tolerance),
         cheap_step_limit(std::pow(24 * newton_tol, 0.25)),
         max_iterations(in.max_iterations),
         radius_over_h(std::sqrt(-std::log(in.tolerance) / gamma)),
-        kernels(lme_simd::select_kernels(in.kernel))
+        kernels(lme_simd::select_kernels(in.kernel)),
+        support(*context.grid, radius_over_h, gamma)
   {
-    // h of a cell is its smallest spacing, so the largest h over the grid is the
-    // smallest over directions of the largest spacing in that direction.
-    std::array<double, dim> h_min_d, h_max_d;
-    double h_local_max = std::numeric_limits<double>::max();
-    for (unsigned int d = 0; d < dim; ++d)
-    {
-      const auto &c = grid.coordinates(d);
-      h_min_d[d]    = std::numeric_limits<double>::max();
-      h_max_d[d]    = 0;
-      for (unsigned int i = 0; i + 1 < c.size(); ++i)
-      {
-        h_min_d[d] = std::min(h_min_d[d], c[i + 1] - c[i]);
-        h_max_d[d] = std::max(h_max_d[d], c[i + 1] - c[i]);
-      }
-      h_local_max = std::min(h_local_max, h_max_d[d]);
-    }
-    R_max = radius_over_h * h_local_max;
-    for (unsigned int d = 0; d < dim; ++d)
-      graded = graded || !grid.is_uniform(d);
-    if (graded)
-      for (unsigned int d = 0; d < dim; ++d)
-        for (unsigned int i = 0; i < grid.n_nodes_in(d); ++i)
-          node_h[d].push_back(grid.nodal_spacing(d, i));
-    max_nodes  = 1;
-    max_box_1d = 0;
-    for (unsigned int d = 0; d < dim; ++d)
-    {
-      // Nodes of direction d within [x - R, x + R].
-      const unsigned int b = std::min<unsigned int>(
-          static_cast<unsigned int>(std::floor(2 * R_max / h_min_d[d])) + 2,
-          grid.n_nodes_in(d));
-      max_nodes *= b;
-      max_box_1d = std::max(max_box_1d, b);
-    }
-    // The index box is up to 4 (2D) or 8 (3D) times the ball; the connectivity is
-    // sized by this bound, so take the tighter count of the ball where it is smaller.
-    max_nodes =
-        std::min(max_nodes, lme_kernels::nodes_in_ball_bound<dim>(R_max, h_min_d));
-    // Rows in whole groups of four for the SIMD passes (lme_simd.h).
-    max_nodes = (max_nodes + 3) / 4 * 4;
   }
 
   std::string name() const override { return "lme"; }
-  unsigned int max_nodes_per_particle() const override { return max_nodes; }
-  double support_radius(const BackgroundGrid<dim> &) const override { return R_max; }
+  unsigned int max_nodes_per_particle() const override { return support.max_nodes(); }
+  double support_radius(const BackgroundGrid<dim> &) const override
+  {
+    return support.widest_radius();
+  }
   double node_support_radius(const BackgroundGrid<dim> &,
                              const std::array<unsigned int, dim> &node) const override
   {
-    if (!graded)
-      return R_max;
-    double h = node_h[0][node[0]];
-    for (unsigned int d = 1; d < dim; ++d)
-      h = std::min(h, node_h[d][node[d]]);
-    return radius_over_h * h; // the node's support is the ball of radius R h_I
+    return support.node_radius(node);
   }
 
   void compute(ParticleStore<dim> &particles, const std::size_t begin,
                const std::size_t end, Connectivity<dim> &conn) const override
   {
-    Assert(conn.stride >= max_nodes, ExcInternalError());
-    Scratch scratch;
-    scratch.y.resize(max_nodes), scratch.a.resize(max_nodes), scratch.w.resize(max_nodes);
-    scratch.y0.resize(max_nodes), scratch.y1.resize(max_nodes);
-    for (unsigned int d = 0; d < dim; ++d)
-      scratch.y1d[d].resize(max_box_1d), scratch.w1d[d].resize(max_box_1d);
+    Assert(conn.stride >= support.max_nodes(), ExcInternalError());
+    Scratch scratch{support.make_offsets()};
+    const bool graded = support.is_graded();
     for (std::size_t p = begin; p < end; ++p)
     {
       const std::size_t row = p * conn.stride;
+      const auto fail_at_p  = [&](const auto &...what) { fail(particles, p, what...); };
+      const Point<dim> &x   = particles.position[p];
       double h;
       const unsigned int n =
-          graded ? set_up<true>(particles, p, &conn.nodes[row], scratch, h)
-                 : set_up<false>(particles, p, &conn.nodes[row], scratch, h);
+          graded
+              ? support.template set_up<true>(x, &conn.nodes[row], scratch, h, fail_at_p)
+              : support.template set_up<false>(x, &conn.nodes[row], scratch, h,
+                                               fail_at_p);
       const Solution solution =
           solve(particles, p, n, warm_start(particles, p, h), &conn.N[row], scratch);
       gradients(particles, p, n, h, scratch, &conn.N[row], solution, &conn.grad_N[row]);
@@ -205,15 +166,10 @@ public:
   }
 
 private:
-  /// Scratch of one compute() call, shared by its particles, and their statistics.
-  struct Scratch
+  /// Scratch of one compute() call, shared by its particles: their nodes' offsets,
+  /// and their statistics.
+  struct Scratch : LmeSupport<dim>::Offsets
   {
-    std::vector<Tensor<1, dim>> y; ///< scaled offsets y_I = (x - x_I) / h of the nodes
-    std::vector<double> y0, y1;    ///< the y_I's components apart (2D kernels)
-    std::vector<double> a;         ///< fixed part -gamma w_I |y_I|^2 of their exponents
-    std::vector<double> w; ///< w_I = beta_I h^2 / gamma = (h / h_I)^2 (graded grids)
-    std::array<std::vector<double>, dim> y1d; ///< (x_d - c_d[i]) / h in the index box
-    std::array<std::vector<double>, dim> w1d; ///< (h / nodal spacing)^2 there (graded)
     std::uint64_t solves = 0, iterations = 0, evaluations = 0, cheap = 0;
     unsigned int max_iterations = 0;
   };
@@ -235,222 +191,6 @@ private:
     AssertThrow(false,
                 ExcShapeFunctionFailure("lme", particles.id[p],
                                         point_to_string(particles.position[p]), s.str()));
-  }
-
-  /**
-   * The index box of the nodes within [x - R, x + R] in each direction (R the widest
-   * support that can reach x), and their scaled offsets (and weights, on a graded
-   * grid) in @p scratch: first[d] and count[d] along each direction d.
-   */
-  template <bool Graded>
-  void index_box(const Point<dim> &x, const double h,
-                 std::array<unsigned int, dim> &first,
-                 std::array<unsigned int, dim> &count, Scratch &scratch) const
-  {
-    const double inv_h = 1 / h;
-    // The widest support that can reach x: R_max bounds every R_I.
-    const double R = Graded ? R_max : radius_over_h * h;
-    auto &y1d      = scratch.y1d;
-    auto &w1d      = scratch.w1d;
-    // On a graded grid trimmed at both ends to nodes that reach x along d (h_I <= its
-    // spacing along d).
-    for (unsigned int d = 0; d < dim; ++d)
-    {
-      const auto &c   = grid.coordinates(d);
-      const double lo = x[d] - R, hi = x[d] + R;
-      unsigned int i_lo = 0, i_hi = c.size() - 1;
-      if (lo > c.front())
-      {
-        grid.locate(lo, d, i_lo);
-        if (c[i_lo] < lo)
-          ++i_lo;
-      }
-      if (hi < c.back())
-        grid.locate(hi, d, i_hi);
-      if constexpr (Graded)
-      {
-        const auto reaches = [&](const unsigned int i)
-        { return std::abs(x[d] - c[i]) <= radius_over_h * node_h[d][i]; };
-        while (i_lo < i_hi && !reaches(i_lo))
-          ++i_lo;
-        while (i_hi > i_lo && !reaches(i_hi))
-          --i_hi;
-      }
-      first[d] = i_lo;
-      count[d] = i_hi + 1 - i_lo;
-      Assert(count[d] <= max_box_1d, ExcInternalError());
-      for (unsigned int k = 0; k < count[d]; ++k)
-      {
-        y1d[d][k] = (x[d] - c[i_lo + k]) * inv_h;
-        if constexpr (Graded)
-        {
-          const double r = h / node_h[d][i_lo + k];
-          w1d[d][k]      = r * r;
-        }
-      }
-    }
-  }
-
-  /// Set-up of particle p: h, the smallest spacing of its cell (the unit of the scaled
-  /// coordinates), and the n nodes whose support holds x (returns n) into @p nodes,
-  /// their y_I, a_I and w_I into @p scratch. On a uniform grid (Graded false) the
-  /// supports all have radius R = radius_over_h h; on a graded one node I reaches
-  /// R_I = radius_over_h h_I. Stops the run if x is outside the grid or not strictly
-  /// inside the nodes' hull.
-  template <bool Graded>
-  unsigned int set_up(const ParticleStore<dim> &particles, const std::size_t p,
-                      unsigned int *nodes, Scratch &scratch, double &h) const
-  {
-    const Point<dim> &x = particles.position[p];
-    std::array<unsigned int, dim> first, count, cell;
-    if (!grid.locate(x, cell))
-      fail(particles, p, "the particle is outside the grid");
-    h = std::numeric_limits<double>::max();
-    for (unsigned int d = 0; d < dim; ++d)
-      h = std::min(h, grid.spacing(d, cell[d]));
-    const double R2 = radius_over_h * radius_over_h;
-    auto &y1d       = scratch.y1d;
-    auto &w1d       = scratch.w1d;
-    index_box<Graded>(x, h, first, count, scratch);
-
-    // Candidates inside their supports, in increasing node index order. q is |y_I|^2
-    // weighted by w_I = (h / h_I)^2, with h_I the smallest of the node's spacings.
-    unsigned int n = 0;
-    Tensor<1, dim> y_min, y_max, yI;
-    for (unsigned int d = 0; d < dim; ++d)
-      y_min[d] = std::numeric_limits<double>::infinity(), y_max[d] = -y_min[d];
-    const auto keep = [&](const unsigned int node, const Tensor<1, dim> &yn,
-                          const double q, const double w)
-    {
-      // Cannot happen (max_nodes bounds the ball); guards the connectivity row.
-      if (n == max_nodes)
-        fail(particles, p, "more nodes in the support than max_nodes_per_particle()");
-      nodes[n]     = node;
-      scratch.y[n] = yn;
-      if constexpr (dim == 2)
-        scratch.y0[n] = yn[0], scratch.y1[n] = yn[1];
-      scratch.a[n] = -gamma * q;
-      scratch.w[n] = w;
-      for (unsigned int d = 0; d < dim; ++d)
-        y_min[d] = std::min(y_min[d], yn[d]), y_max[d] = std::max(y_max[d], yn[d]);
-      ++n;
-    };
-    // Weight of a node from those of its rows: the largest, as h_I is the smallest.
-    const auto weight = [&](const unsigned int d, const unsigned int k)
-    {
-      if constexpr (Graded)
-        return w1d[d][k];
-      else
-        return 1.0;
-    };
-    if constexpr (dim == 2 && !Graded)
-    {
-      // The kept nodes of a row are contiguous (u falls monotonically along it and q
-      // grows with |u|): each row's range grows or shrinks from the last one's by the
-      // support test itself, so exactly the nodes with q <= R2 are kept. sides
-      // collects the signs of the kept offsets for the hull test below.
-      unsigned int sides = 0;
-      double *y0 = scratch.y0.data(), *y1 = scratch.y1.data(), *a = scratch.a.data();
-      const double *u = y1d[0].data();
-      const int last  = static_cast<int>(count[0]) - 1;
-      int lo_prev = 0, hi_prev = -1;
-      for (unsigned int j = 0; j < count[1]; ++j)
-      {
-        const double v  = y1d[1][j];
-        const double qj = v * v;
-        if (qj > R2)
-          continue;
-        const auto inside = [&](const int i) { return u[i] * u[i] + qj <= R2; };
-        // Start from the last row's range (the first row: the node nearest x).
-        if (hi_prev < lo_prev)
-          lo_prev = hi_prev = std::clamp(static_cast<int>(u[0] + 0.5), 0, last);
-        int lo = lo_prev, hi = hi_prev;
-        while (lo > 0 && inside(lo - 1))
-          --lo;
-        while (lo <= hi && !inside(lo))
-          ++lo;
-        while (hi < last && inside(hi + 1))
-          ++hi;
-        while (hi >= lo && !inside(hi))
-          --hi;
-        if (hi < lo)
-          continue;
-        lo_prev = lo, hi_prev = hi;
-        if (n + (hi - lo + 1) > max_nodes)
-          fail(particles, p, "more nodes in the support than max_nodes_per_particle()");
-        const unsigned int row = (first[1] + j) * grid.node_stride(1) + first[0];
-        for (int i = lo; i <= hi; ++i, ++n)
-          nodes[n] = row + i, y0[n] = u[i], y1[n] = v, a[n] = -gamma * (u[i] * u[i] + qj);
-        sides |= (v < 0 ? 4u : 0u) | (v > 0 ? 8u : 0u) | (u[hi] < 0 ? 1u : 0u) |
-                 (u[lo] > 0 ? 2u : 0u);
-      }
-      if (sides != 15u)
-        for (unsigned int I = 0; I < n; ++I)
-          y_min[0] = std::min(y_min[0], y0[I]), y_max[0] = std::max(y_max[0], y0[I]),
-          y_min[1] = std::min(y_min[1], y1[I]), y_max[1] = std::max(y_max[1], y1[I]);
-      else
-        y_min[0] = y_min[1] = -1, y_max[0] = y_max[1] = 1;
-    }
-    else if constexpr (dim == 2)
-    {
-      for (unsigned int j = 0; j < count[1]; ++j)
-      {
-        const double qj = y1d[1][j] * y1d[1][j];
-        if (qj * weight(1, j) > R2)
-          continue;
-        const unsigned int row = (first[1] + j) * grid.node_stride(1) + first[0];
-        for (unsigned int i = 0; i < count[0]; ++i)
-        {
-          const double w = std::max(weight(0, i), weight(1, j));
-          const double q = w * (y1d[0][i] * y1d[0][i] + qj);
-          if (q <= R2)
-          {
-            yI[0] = y1d[0][i], yI[1] = y1d[1][j];
-            keep(row + i, yI, q, w);
-          }
-        }
-      }
-    }
-    else
-    {
-      for (unsigned int k = 0; k < count[2]; ++k)
-      {
-        const double qk = y1d[2][k] * y1d[2][k];
-        if (qk * weight(2, k) > R2)
-          continue;
-        for (unsigned int j = 0; j < count[1]; ++j)
-        {
-          const double qj  = y1d[1][j] * y1d[1][j] + qk;
-          const double wjk = std::max(weight(1, j), weight(2, k));
-          if (qj * wjk > R2)
-            continue;
-          const unsigned int row = (first[2] + k) * grid.node_stride(2) +
-                                   (first[1] + j) * grid.node_stride(1) + first[0];
-          for (unsigned int i = 0; i < count[0]; ++i)
-          {
-            const double w = std::max(weight(0, i), wjk);
-            const double q = w * (y1d[0][i] * y1d[0][i] + qj);
-            if (q <= R2)
-            {
-              yI[0] = y1d[0][i], yI[1] = y1d[1][j], yI[2] = y1d[2][k];
-              keep(row + i, yI, q, w);
-            }
-          }
-        }
-      }
-    }
-    // The multiplier is finite only if x is strictly inside the hull of its
-    // nodes; on a grid that needs nodes on both sides in every direction.
-    for (unsigned int d = 0; d < dim; ++d)
-      if (!(y_min[d] < 0 && y_max[d] > 0))
-      {
-        fail(particles, p, "the particle is not strictly inside the convex hull of its ",
-             n, " nodes within reach (R = ", radius_over_h * h,
-             " for the cell's spacing; no node on one side along direction ", d,
-             "): it lies on the grid boundary, or the support is too small for its ",
-             "cell (lower 'LME gamma' = ", gamma, " or 'LME tolerance')");
-      }
-    return n;
   }
 
   /// Warm start mu = lambda h: the last multiplier extrapolated along the motion since
@@ -561,10 +301,9 @@ private:
         continue;
       }
       {
-        if constexpr (dim == 2)
-          if (!graded) // the uniform 2D set-up fills only y0 and y1
-            for (unsigned int I = 0; I < n; ++I)
-              scratch.y[I][0] = scratch.y0[I], scratch.y[I][1] = scratch.y1[I];
+        if constexpr (dim == 2) // the 2D set-ups fill only y0 and y1
+          for (unsigned int I = 0; I < n; ++I)
+            scratch.y[I][0] = scratch.y0[I], scratch.y[I][1] = scratch.y1[I];
         Tensor<1, dim> w;
         for (unsigned int I = 0; I < n; ++I)
         {
@@ -642,7 +381,7 @@ private:
     const Tensor<1, dim> &r    = solution.r;
     particles.lme_lambda[p]    = solution.mu * inv_h;
     particles.lme_position[p]  = particles.position[p];
-    if (!graded)
+    if (!support.is_graded())
     {
       if constexpr (dim == 2)
         for (unsigned int I = 0; I < n; ++I)
@@ -667,24 +406,46 @@ private:
     // w_I = 1 it is the uniform form above.
     Tensor<1, dim> s;
     Tensor<2, dim> C;
-    for (unsigned int I = 0; I < n; ++I)
+    if constexpr (dim == 2)
     {
-      const Tensor<1, dim> v = (N[I] * scratch.w[I]) * scratch.y[I];
-      s += v;
-      C += outer_product(v, scratch.y[I]);
+      // The Tensor operations below written out on the 2D offsets, in their order.
+      const double *y0 = scratch.y0.data(), *y1 = scratch.y1.data();
+      for (unsigned int I = 0; I < n; ++I)
+      {
+        const double c = N[I] * scratch.w[I], v0 = c * y0[I], v1 = c * y1[I];
+        s[0] += v0, s[1] += v1;
+        C[0][0] += v0 * y0[I], C[0][1] += v0 * y1[I];
+        C[1][0] += v1 * y0[I], C[1][1] += v1 * y1[I];
+      }
     }
+    else
+      for (unsigned int I = 0; I < n; ++I)
+      {
+        const Tensor<1, dim> v = (N[I] * scratch.w[I]) * scratch.y[I];
+        s += v;
+        C += outer_product(v, scratch.y[I]);
+      }
     C -= outer_product(r, s);
-    const Tensor<2, dim> M  = -(J_inv * (unit - (2 * gamma) * C));
-    const Tensor<2, dim> Mt = transpose(M);
-    for (unsigned int I = 0; I < n; ++I)
-      gradN[I] = (N[I] * inv_h) * ((-2 * gamma * scratch.w[I]) * scratch.y[I] +
-                                   (2 * gamma) * s + Mt * (scratch.y[I] - r));
+    const Tensor<2, dim> M   = -(J_inv * (unit - (2 * gamma) * C));
+    const Tensor<2, dim> Mt  = transpose(M);
+    const Tensor<1, dim> g2s = (2 * gamma) * s;
+    if constexpr (dim == 2)
+      for (unsigned int I = 0; I < n; ++I)
+      {
+        const double a = -2 * gamma * scratch.w[I], c = N[I] * inv_h;
+        const double u = scratch.y0[I] - r[0], v = scratch.y1[I] - r[1];
+        gradN[I][0] = c * ((a * scratch.y0[I] + g2s[0]) + (Mt[0][0] * u + Mt[0][1] * v));
+        gradN[I][1] = c * ((a * scratch.y1[I] + g2s[1]) + (Mt[1][0] * u + Mt[1][1] * v));
+      }
+    else
+      for (unsigned int I = 0; I < n; ++I)
+        gradN[I] = (N[I] * inv_h) * ((-2 * gamma * scratch.w[I]) * scratch.y[I] + g2s +
+                                     Mt * (scratch.y[I] - r));
     particles.lme_lambda_rate[p] = M * (inv_h * inv_h);
   }
 
   /// Wolfe constants of the line search (sufficient decrease, curvature).
   static constexpr double c1 = 1e-4, c2 = 0.1;
-  const BackgroundGrid<dim> &grid;
   const double gamma;
   const double newton_tol;
   /// Largest |t| of a polynomial_step(): its relative error t^4 / 24 is below newton_tol.
@@ -692,11 +453,7 @@ private:
   const unsigned int max_iterations;
   const double radius_over_h;        ///< support radius R / h
   const lme_simd::Kernels2 &kernels; ///< the 2D passes, scalar or SIMD
-  double R_max = 0;                  ///< largest support radius on this grid
-  bool graded  = false;              ///< nodal beta_I (any direction not uniform)
-  std::array<std::vector<double>, dim> node_h; ///< nodal spacings (graded grids)
-  unsigned int max_nodes;
-  unsigned int max_box_1d;
+  const LmeSupport<dim> support;     ///< which nodes hold a point
 
   mutable std::atomic<std::uint64_t> n_solves{0};
   mutable std::atomic<std::uint64_t> n_iterations{0};

@@ -8,9 +8,11 @@
 
 #include <deal.II/base/tensor.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #ifdef LME_MPM_EIGEN_EXP
 #include <Eigen/Core>
@@ -129,6 +131,74 @@ unsigned int nodes_in_ball_bound(const double R, const std::array<double, dim> &
         count += in_row(R2 - dz2 - std::pow(j * h[1] / 2, 2));
   }
   return count;
+}
+
+/**
+ * The most nodes whose supports can hold a point of one cell, over the cells of a
+ * product grid with nodal coordinates @p coords, where node I reaches R_I =
+ * radius_over_h h_I, h_I the smallest of its spacings @p node_h. On a graded grid
+ * nodes_in_ball_bound() must take the widest support with the narrowest spacing, which
+ * over-counts several times; the connectivity's rows are sized by this bound, and rows
+ * mostly empty cost the transfers their memory traffic.
+ */
+template <int dim>
+unsigned int nodes_within_reach_bound(const std::array<std::vector<double>, dim> &coords,
+                                      const std::array<std::vector<double>, dim> &node_h,
+                                      const double radius_over_h)
+{
+  struct Near
+  {
+    double gap2, h; ///< squared distance from the cell along one direction; spacing
+  };
+  double h_max = 0;
+  for (unsigned int d = 0; d < dim; ++d)
+    for (const double h : node_h[d])
+      h_max = std::max(h_max, h);
+  // Margins far above rounding: a node counted here that the set-up drops is harmless,
+  // the reverse would stop a run.
+  const double reach = radius_over_h * h_max * (1 + 1e-9);
+  const double s2    = radius_over_h * radius_over_h * (1 + 1e-9);
+  // Per direction and cell, the nodes within the widest reach of the cell along it; the
+  // directions past dim hold one node at distance 0 that does not limit h_I.
+  std::array<std::vector<std::vector<Near>>, 3> near;
+  for (unsigned int d = 0; d < 3; ++d)
+  {
+    if (d >= dim)
+    {
+      near[d] = {{Near{0, std::numeric_limits<double>::infinity()}}};
+      continue;
+    }
+    const auto &c = coords[d];
+    near[d].resize(c.size() - 1);
+    for (std::size_t cell = 0; cell + 1 < c.size(); ++cell)
+      for (std::size_t i = 0; i < c.size(); ++i)
+      {
+        const double gap = std::max({0.0, c[cell] - c[i], c[i] - c[cell + 1]});
+        if (gap <= reach)
+          near[d][cell].push_back({gap * gap, node_h[d][i]});
+      }
+  }
+  unsigned int most = 0;
+  for (const auto &zs : near[2])
+    for (const auto &ys : near[1])
+      for (const auto &xs : near[0])
+      {
+        unsigned int n = 0;
+        for (const Near &z : zs)
+          for (const Near &y : ys)
+          {
+            const double gap2 = z.gap2 + y.gap2, h_yz = std::min(z.h, y.h);
+            if (gap2 > s2 * h_yz * h_yz)
+              continue;
+            for (const Near &x : xs)
+            {
+              const double h = std::min(h_yz, x.h);
+              n += (gap2 + x.gap2 <= s2 * h * h);
+            }
+          }
+        most = std::max(most, n);
+      }
+  return most;
 }
 } // namespace lme_kernels
 } // namespace shape_functions

@@ -10,6 +10,7 @@
 
 #include "test_helpers.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <random>
@@ -67,4 +68,37 @@ TEST(BackgroundGrid, LocateUniformAndGraded)
   EXPECT_EQ(ijk[1], 3u);
   EXPECT_EQ(grid.nodes_on_boundary(0).size(), 5u);
   EXPECT_EQ(grid.nodes_on_boundary(3).size(), 11u);
+}
+
+// The graded lookup (buckets of the smallest spacing) against a binary search of the
+// coordinates, at every node, just either side of it, and at random points, on steps
+// of very different sizes: the same cell everywhere, faces to the upper cell.
+TEST(BackgroundGrid, GradedLocateMatchesBinarySearchAtEveryFace)
+{
+  BackgroundGrid<2> grid;
+  const std::vector<double> steps = {0.3, 0.07, 0.011, 0.011, 0.5, 0.013, 0.2, 0.0999};
+  grid.reinit(Point<2>(-0.37, 0), {{steps, std::vector<double>(3, 0.25)}});
+  ASSERT_FALSE(grid.is_uniform(0));
+  const auto &c        = grid.coordinates(0);
+  const auto reference = [&](const double x)
+  {
+    const long k =
+        static_cast<long>(std::upper_bound(c.begin(), c.end(), x) - c.begin()) - 1;
+    return static_cast<unsigned int>(std::clamp<long>(k, 0, c.size() - 2));
+  };
+  std::vector<double> xs;
+  for (const double ci : c)
+    for (const double x : {std::nextafter(ci, -1e9), ci, std::nextafter(ci, 1e9)})
+      if (x >= c.front() && x <= c.back())
+        xs.push_back(x);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(c.front(), c.back());
+  for (int i = 0; i < 10000; ++i)
+    xs.push_back(u(rng));
+  for (const double x : xs)
+  {
+    unsigned int i = 12345;
+    ASSERT_TRUE(grid.locate(x, 0, i));
+    EXPECT_EQ(i, reference(x)) << "x = " << x;
+  }
 }

@@ -1391,3 +1391,48 @@ TEST(ShapeFunctions, LmeKernelsAgreeToRounding)
       }
     }
 }
+
+// The connectivity's rows on graded grids: sized by the most nodes that reach a cell
+// (every particle fits), and in 2D not much more than the most any point has, where
+// the ball bound with the widest support and the narrowest spacing was about three
+// times that (and the transfers read rows that were mostly empty).
+template <int dim>
+void check_lme_rows_fit_graded_grid(const BackgroundGrid<dim> &grid,
+                                    const unsigned int n_points)
+{
+  const auto lme = make<dim>("lme", grid);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const Point<dim> lo = grid.lower_corner(), hi = grid.upper_corner();
+  ParticleStore<dim> particles;
+  for (unsigned int k = 0; k < n_points; ++k)
+  {
+    Point<dim> x;
+    for (unsigned int d = 0; d < dim; ++d)
+      x[d] = lo[d] + (0.15 + 0.7 * u(rng)) * (hi[d] - lo[d]);
+    add_particle(particles, grid, x);
+  }
+  const Connectivity<dim> conn = evaluate(*lme, particles); // stops if a row overflows
+  const unsigned int most = *std::max_element(conn.n_nodes.begin(), conn.n_nodes.end());
+  EXPECT_LE(most, lme->max_nodes_per_particle());
+  // In 3D a cell widens the ball by more (about twice the most at a point here).
+  if (dim == 2)
+    EXPECT_LE(lme->max_nodes_per_particle(), most + most / 4 + 4)
+        << "most nodes at a point " << most;
+}
+
+TEST(ShapeFunctions, LmeRowsFitGradedGridsTightly)
+{
+  // The drop-weight scene's middle: 1.25 mm columns between 2.5 mm ones, 1.25 mm rows
+  // between 2.5 mm ones (cells at most twice as long as wide).
+  BackgroundGrid<2> grid;
+  std::array<std::vector<double>, 2> steps;
+  for (const auto &[n, h] : {std::pair{8, 0.0025}, {24, 0.00125}, {8, 0.0025}})
+    steps[0].insert(steps[0].end(), n, h);
+  for (const auto &[n, h] : {std::pair{16, 0.0025}, {8, 0.00125}, {12, 0.0025}})
+    steps[1].insert(steps[1].end(), n, h);
+  grid.reinit(Point<2>(), steps);
+  check_lme_rows_fit_graded_grid<2>(grid, 20000);
+  check_lme_rows_fit_graded_grid<2>(*graded_grid<2>(), 5000);
+  check_lme_rows_fit_graded_grid<3>(*graded_grid<3>(), 3000);
+}

@@ -152,6 +152,11 @@ private:
   std::array<std::vector<double>, dim> coords;
   std::array<double, dim> uniform_h{};
   std::array<double, dim> inverse_uniform_h{}; ///< 1 / uniform_h (0 where graded)
+  /// Graded directions: the cell holding the lower end of each bucket of width the
+  /// direction's smallest spacing, so that locating a point takes a lookup and at most
+  /// a step or two instead of a binary search.
+  std::array<std::vector<unsigned int>, dim> bucket_cell;
+  std::array<double, dim> inverse_bucket_width{};
   std::array<unsigned int, dim> node_strides{};
   std::array<unsigned int, dim> cell_strides{};
   unsigned int n_nodes_total = 0, n_cells_total = 0;

@@ -1,0 +1,372 @@
+#ifndef LME_MPM_SHAPE_FUNCTIONS_LME_SUPPORT_H
+#define LME_MPM_SHAPE_FUNCTIONS_LME_SUPPORT_H
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <lme_mpm/grid/background_grid.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "lme_kernels.h"
+
+namespace lme_mpm
+{
+namespace shape_functions
+{
+/**
+ * Which nodes' supports hold a point, for the local max-ent functions: the support
+ * search, apart from the multiplier's solve (lme.cc). On a uniform grid every node
+ * reaches R = radius_over_h h; on a graded one node I reaches R_I = radius_over_h h_I,
+ * h_I the smallest of its spacings. It sizes the connectivity's rows
+ * (max_nodes()) and fills, per point, the nodes with their scaled offsets and the fixed
+ * parts of their exponents.
+ */
+template <int dim>
+class LmeSupport
+{
+public:
+  /// The offsets of one point's nodes and the fixed parts of their exponents, and the
+  /// search's own scratch; one per thread, reused from point to point.
+  struct Offsets
+  {
+    std::vector<Tensor<1, dim>> y; ///< scaled offsets y_I = (x - x_I) / h (3D)
+    std::vector<double> y0, y1;    ///< the y_I's components apart (2D kernels)
+    std::vector<double> a;         ///< fixed part -gamma w_I |y_I|^2 of their exponents
+    std::vector<double> w; ///< w_I = beta_I h^2 / gamma = (h / h_I)^2 (graded grids)
+    std::array<std::vector<double>, dim> y1d; ///< (x_d - c_d[i]) / h in the index box
+    std::array<std::vector<double>, dim> w1d; ///< (h / nodal spacing)^2 there (graded)
+  };
+
+  LmeSupport(const BackgroundGrid<dim> &grid, const double radius_over_h,
+             const double gamma)
+      : grid(grid), gamma(gamma), radius_over_h(radius_over_h)
+  {
+    // h of a cell is its smallest spacing, so the largest h over the grid is the
+    // smallest over directions of the largest spacing in that direction.
+    std::array<double, dim> h_min_d, h_max_d;
+    double h_local_max = std::numeric_limits<double>::max();
+    for (unsigned int d = 0; d < dim; ++d)
+    {
+      const auto &c = grid.coordinates(d);
+      h_min_d[d]    = std::numeric_limits<double>::max();
+      h_max_d[d]    = 0;
+      for (unsigned int i = 0; i + 1 < c.size(); ++i)
+      {
+        h_min_d[d] = std::min(h_min_d[d], c[i + 1] - c[i]);
+        h_max_d[d] = std::max(h_max_d[d], c[i + 1] - c[i]);
+      }
+      h_local_max = std::min(h_local_max, h_max_d[d]);
+    }
+    R_max = radius_over_h * h_local_max;
+    for (unsigned int d = 0; d < dim; ++d)
+      graded = graded || !grid.is_uniform(d);
+    if (graded)
+      for (unsigned int d = 0; d < dim; ++d)
+        for (unsigned int i = 0; i < grid.n_nodes_in(d); ++i)
+          node_h[d].push_back(grid.nodal_spacing(d, i));
+    max_nodes_ = 1;
+    max_box_1d = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+    {
+      // Nodes of direction d within [x - R, x + R].
+      const unsigned int b = std::min<unsigned int>(
+          static_cast<unsigned int>(std::floor(2 * R_max / h_min_d[d])) + 2,
+          grid.n_nodes_in(d));
+      max_nodes_ *= b;
+      max_box_1d = std::max(max_box_1d, b);
+    }
+    // The index box is up to 4 (2D) or 8 (3D) times the ball; the connectivity is
+    // sized by this bound, so take the tighter count of the ball where it is smaller.
+    max_nodes_ =
+        std::min(max_nodes_, lme_kernels::nodes_in_ball_bound<dim>(R_max, h_min_d));
+    if (graded)
+    {
+      std::array<std::vector<double>, dim> coords;
+      for (unsigned int d = 0; d < dim; ++d)
+        coords[d] = grid.coordinates(d);
+      max_nodes_ = std::min(max_nodes_, lme_kernels::nodes_within_reach_bound<dim>(
+                                            coords, node_h, radius_over_h));
+    }
+    // Rows in whole groups of four for the SIMD passes.
+    max_nodes_ = (max_nodes_ + 3) / 4 * 4;
+  }
+
+  /// Rows of the connectivity: at least the most nodes one point can have, in whole
+  /// groups of four for the SIMD passes (lme_simd.h).
+  unsigned int max_nodes() const { return max_nodes_; }
+  /// The widest support on this grid.
+  double widest_radius() const { return R_max; }
+  bool is_graded() const { return graded; }
+  /// The reach of the node with Cartesian index @p node.
+  double node_radius(const std::array<unsigned int, dim> &node) const
+  {
+    if (!graded)
+      return R_max;
+    double h = node_h[0][node[0]];
+    for (unsigned int d = 1; d < dim; ++d)
+      h = std::min(h, node_h[d][node[d]]);
+    return radius_over_h * h; // the node's support is the ball of radius R h_I
+  }
+  /// Offsets sized for this grid.
+  Offsets make_offsets() const
+  {
+    Offsets o;
+    o.y.resize(max_nodes_), o.a.resize(max_nodes_), o.w.resize(max_nodes_);
+    o.y0.resize(max_nodes_), o.y1.resize(max_nodes_);
+    for (unsigned int d = 0; d < dim; ++d)
+      o.y1d[d].resize(max_box_1d), o.w1d[d].resize(max_box_1d);
+    return o;
+  }
+
+  /// Set-up of a point x: h, the smallest spacing of its cell (the unit of the scaled
+  /// coordinates), and the n nodes whose support holds x (returns n) into @p nodes,
+  /// their y_I, a_I and w_I into @p scratch. On a uniform grid (Graded false) the
+  /// supports all have radius R = radius_over_h h; on a graded one node I reaches
+  /// R_I = radius_over_h h_I. Calls fail(what...) (which must throw) if x is outside
+  /// the grid or not strictly inside the nodes' hull.
+  template <bool Graded, class Fail>
+  unsigned int set_up(const Point<dim> &x, unsigned int *nodes, Offsets &scratch,
+                      double &h, const Fail &fail) const
+  {
+    std::array<unsigned int, dim> first, count, cell;
+    if (!grid.locate(x, cell))
+      fail("the particle is outside the grid");
+    h = std::numeric_limits<double>::max();
+    for (unsigned int d = 0; d < dim; ++d)
+      h = std::min(h, grid.spacing(d, cell[d]));
+    const double R2 = radius_over_h * radius_over_h;
+    auto &y1d       = scratch.y1d;
+    auto &w1d       = scratch.w1d;
+    index_box<Graded>(x, cell, h, first, count, scratch);
+
+    // Candidates inside their supports, in increasing node index order. q is |y_I|^2
+    // weighted by w_I = (h / h_I)^2, with h_I the smallest of the node's spacings.
+    unsigned int n = 0;
+    Tensor<1, dim> y_min, y_max, yI;
+    for (unsigned int d = 0; d < dim; ++d)
+      y_min[d] = std::numeric_limits<double>::infinity(), y_max[d] = -y_min[d];
+    const auto keep = [&](const unsigned int node, const Tensor<1, dim> &yn,
+                          const double q, const double w)
+    {
+      // Cannot happen (max_nodes_ bounds the ball); guards the connectivity row.
+      if (n == max_nodes_)
+        fail("more nodes in the support than max_nodes__per_particle()");
+      nodes[n] = node;
+      // 2D keeps the offsets apart only (the Chebyshev correction copies them).
+      if constexpr (dim == 2)
+        scratch.y0[n] = yn[0], scratch.y1[n] = yn[1];
+      else
+        scratch.y[n] = yn;
+      scratch.a[n] = -gamma * q;
+      scratch.w[n] = w;
+      for (unsigned int d = 0; d < dim; ++d)
+        y_min[d] = std::min(y_min[d], yn[d]), y_max[d] = std::max(y_max[d], yn[d]);
+      ++n;
+    };
+    // Weight of a node from those of its rows: the largest, as h_I is the smallest.
+    const auto weight = [&](const unsigned int d, const unsigned int k)
+    {
+      if constexpr (Graded)
+        return w1d[d][k];
+      else
+        return 1.0;
+    };
+    if constexpr (dim == 2 && !Graded)
+    {
+      // The kept nodes of a row are contiguous (u falls monotonically along it and q
+      // grows with |u|): each row's range grows or shrinks from the last one's by the
+      // support test itself, so exactly the nodes with q <= R2 are kept. sides
+      // collects the signs of the kept offsets for the hull test below.
+      unsigned int sides = 0;
+      double *y0 = scratch.y0.data(), *y1 = scratch.y1.data(), *a = scratch.a.data();
+      const double *u = y1d[0].data();
+      const int last  = static_cast<int>(count[0]) - 1;
+      int lo_prev = 0, hi_prev = -1;
+      for (unsigned int j = 0; j < count[1]; ++j)
+      {
+        const double v  = y1d[1][j];
+        const double qj = v * v;
+        if (qj > R2)
+          continue;
+        const auto inside = [&](const int i) { return u[i] * u[i] + qj <= R2; };
+        // Start from the last row's range (the first row: the node nearest x).
+        if (hi_prev < lo_prev)
+          lo_prev = hi_prev = std::clamp(static_cast<int>(u[0] + 0.5), 0, last);
+        int lo = lo_prev, hi = hi_prev;
+        while (lo > 0 && inside(lo - 1))
+          --lo;
+        while (lo <= hi && !inside(lo))
+          ++lo;
+        while (hi < last && inside(hi + 1))
+          ++hi;
+        while (hi >= lo && !inside(hi))
+          --hi;
+        if (hi < lo)
+          continue;
+        lo_prev = lo, hi_prev = hi;
+        if (n + (hi - lo + 1) > max_nodes_)
+          fail("more nodes in the support than max_nodes__per_particle()");
+        const unsigned int row = (first[1] + j) * grid.node_stride(1) + first[0];
+        for (int i = lo; i <= hi; ++i, ++n)
+          nodes[n] = row + i, y0[n] = u[i], y1[n] = v, a[n] = -gamma * (u[i] * u[i] + qj);
+        sides |= (v < 0 ? 4u : 0u) | (v > 0 ? 8u : 0u) | (u[hi] < 0 ? 1u : 0u) |
+                 (u[lo] > 0 ? 2u : 0u);
+      }
+      if (sides != 15u)
+        for (unsigned int I = 0; I < n; ++I)
+          y_min[0] = std::min(y_min[0], y0[I]), y_max[0] = std::max(y_max[0], y0[I]),
+          y_min[1] = std::min(y_min[1], y1[I]), y_max[1] = std::max(y_max[1], y1[I]);
+      else
+        y_min[0] = y_min[1] = -1, y_max[0] = y_max[1] = 1;
+    }
+    else if constexpr (dim == 2)
+    {
+      for (unsigned int j = 0; j < count[1]; ++j)
+      {
+        const double qj = y1d[1][j] * y1d[1][j];
+        if (qj * weight(1, j) > R2)
+          continue;
+        const unsigned int row = (first[1] + j) * grid.node_stride(1) + first[0];
+        for (unsigned int i = 0; i < count[0]; ++i)
+        {
+          const double w = std::max(weight(0, i), weight(1, j));
+          const double q = w * (y1d[0][i] * y1d[0][i] + qj);
+          if (q <= R2)
+          {
+            yI[0] = y1d[0][i], yI[1] = y1d[1][j];
+            keep(row + i, yI, q, w);
+          }
+        }
+      }
+    }
+    else
+    {
+      for (unsigned int k = 0; k < count[2]; ++k)
+      {
+        const double qk = y1d[2][k] * y1d[2][k];
+        if (qk * weight(2, k) > R2)
+          continue;
+        for (unsigned int j = 0; j < count[1]; ++j)
+        {
+          const double qj  = y1d[1][j] * y1d[1][j] + qk;
+          const double wjk = std::max(weight(1, j), weight(2, k));
+          if (qj * wjk > R2)
+            continue;
+          const unsigned int row = (first[2] + k) * grid.node_stride(2) +
+                                   (first[1] + j) * grid.node_stride(1) + first[0];
+          for (unsigned int i = 0; i < count[0]; ++i)
+          {
+            const double w = std::max(weight(0, i), wjk);
+            const double q = w * (y1d[0][i] * y1d[0][i] + qj);
+            if (q <= R2)
+            {
+              yI[0] = y1d[0][i], yI[1] = y1d[1][j], yI[2] = y1d[2][k];
+              keep(row + i, yI, q, w);
+            }
+          }
+        }
+      }
+    }
+    // The multiplier is finite only if x is strictly inside the hull of its
+    // nodes; on a grid that needs nodes on both sides in every direction.
+    for (unsigned int d = 0; d < dim; ++d)
+      if (!(y_min[d] < 0 && y_max[d] > 0))
+      {
+        fail("the particle is not strictly inside the convex hull of its ", n,
+             " nodes within reach (R = ", radius_over_h * h,
+             " for the cell's spacing; no node on one side along direction ", d,
+             "): it lies on the grid boundary, or the support is too small for its ",
+             "cell (lower 'LME gamma' = ", gamma, " or 'LME tolerance')");
+      }
+    return n;
+  }
+
+private:
+  /**
+   * The index box of the nodes within [x - R, x + R] in each direction (R the widest
+   * support that can reach x), and their scaled offsets (and weights, on a graded
+   * grid) in @p scratch: first[d] and count[d] along each direction d.
+   */
+  template <bool Graded>
+  void index_box(const Point<dim> &x, const std::array<unsigned int, dim> &cell,
+                 const double h, std::array<unsigned int, dim> &first,
+                 std::array<unsigned int, dim> &count, Offsets &scratch) const
+  {
+    const double inv_h = 1 / h;
+    // The widest support that can reach x: R_max bounds every R_I.
+    const double R = Graded ? R_max : radius_over_h * h;
+    auto &y1d      = scratch.y1d;
+    auto &w1d      = scratch.w1d;
+    // On a graded grid trimmed at both ends to nodes that reach x along d (h_I <= its
+    // spacing along d).
+    for (unsigned int d = 0; d < dim; ++d)
+    {
+      const auto &c   = grid.coordinates(d);
+      const double lo = x[d] - R, hi = x[d] + R;
+      unsigned int i_lo = 0, i_hi = c.size() - 1;
+      if constexpr (!Graded)
+      {
+        if (lo > c.front())
+        {
+          grid.locate(lo, d, i_lo);
+          if (c[i_lo] < lo)
+            ++i_lo;
+        }
+        if (hi < c.back())
+          grid.locate(hi, d, i_hi);
+      }
+      else
+      {
+        // The first node at or above lo and the last at or below hi, walked to from
+        // x's cell: a few nodes each way, where a search of the graded coordinates
+        // costs more.
+        i_lo = cell[d];
+        while (i_lo > 0 && c[i_lo - 1] >= lo)
+          --i_lo;
+        while (c[i_lo] < lo)
+          ++i_lo;
+        i_hi = cell[d] + 1;
+        while (i_hi + 1 < c.size() && c[i_hi + 1] <= hi)
+          ++i_hi;
+        while (c[i_hi] > hi)
+          --i_hi;
+        const auto reaches = [&](const unsigned int i)
+        { return std::abs(x[d] - c[i]) <= radius_over_h * node_h[d][i]; };
+        while (i_lo < i_hi && !reaches(i_lo))
+          ++i_lo;
+        while (i_hi > i_lo && !reaches(i_hi))
+          --i_hi;
+      }
+      first[d] = i_lo;
+      count[d] = i_hi + 1 - i_lo;
+      Assert(count[d] <= max_box_1d, ExcInternalError());
+      for (unsigned int k = 0; k < count[d]; ++k)
+      {
+        y1d[d][k] = (x[d] - c[i_lo + k]) * inv_h;
+        if constexpr (Graded)
+        {
+          const double r = h / node_h[d][i_lo + k];
+          w1d[d][k]      = r * r;
+        }
+      }
+    }
+  }
+
+  const BackgroundGrid<dim> &grid;
+  const double gamma;
+  const double radius_over_h; ///< support radius R / h
+  double R_max = 0;           ///< largest support radius on this grid
+  bool graded  = false;       ///< nodal beta_I (any direction not uniform)
+  std::array<std::vector<double>, dim> node_h; ///< nodal spacings (graded grids)
+  unsigned int max_nodes_;
+  unsigned int max_box_1d;
+};
+} // namespace shape_functions
+} // namespace lme_mpm
+
+#endif
