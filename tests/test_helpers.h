@@ -5,15 +5,22 @@
 #include <lme_mpm/simulation/run.h>
 #include <lme_mpm/simulation/simulation.h>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace lme_mpm_test
@@ -117,6 +124,77 @@ inline std::string run_error(const std::string &prm, std::vector<std::string> ov
   }
   return "";
 }
+
+/**
+ * Runs @p prm with @p overrides (which write checkpoints into @p dir) to its end, then
+ * resumes in @p dir from its last checkpoint before the end (checkpoint.bin.prev: a
+ * finished run also keeps one of its last step, checkpoint.bin), after @p edit has
+ * changed that checkpoint.
+ */
+inline void run_and_resume(const std::string &prm,
+                           const std::vector<std::string> &overrides,
+                           const std::string &dir,
+                           const std::function<void(const std::string &)> &edit = {})
+{
+  std::ostringstream quiet;
+  lme_mpm::run_parameter_file(prm, overrides, quiet);
+  ASSERT_TRUE(std::filesystem::exists(dir + "/checkpoint.bin.prev"));
+  std::filesystem::rename(dir + "/checkpoint.bin.prev", dir + "/checkpoint.bin");
+  if (edit)
+    edit(dir + "/checkpoint.bin");
+  lme_mpm::run_parameter_file(prm, overrides, quiet, dir);
+}
+
+/// The run in @p b ended in the state of the one in @p a, and wrote the same history.
+inline void expect_same_run(const std::string &a, const std::string &b)
+{
+  EXPECT_FALSE(checksum(a).empty());
+  EXPECT_EQ(checksum(a), checksum(b));
+  EXPECT_EQ(file_text(a + "/history.csv"), file_text(b + "/history.csv"));
+}
+#ifdef LME_MPM_BINARY
+/**
+ * Starts the program on @p prm with @p sets (shell-free argv), output to @p log;
+ * sends @p signal once history.csv in @p out has @p rows rows (and, with
+ * @p checkpoint, once a checkpoint exists); returns the wait status.
+ */
+inline int run_and_signal(const std::string &prm, const std::vector<std::string> &sets,
+                          const std::string &out, const std::string &log,
+                          const int signal, const std::size_t rows, const bool checkpoint)
+{
+  const pid_t pid = fork();
+  if (pid < 0)
+    return -1;
+  if (pid == 0)
+  {
+    if (!std::freopen(log.c_str(), "w", stdout) ||
+        !std::freopen(log.c_str(), "a", stderr))
+      _exit(99);
+    std::vector<std::string> args = {LME_MPM_BINARY, prm, "--threads", "1"};
+    for (const auto &s : sets)
+      args.push_back("--set"), args.push_back(s);
+    std::vector<char *> argv;
+    for (auto &a : args)
+      argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(argv[0], argv.data());
+    _exit(98);
+  }
+  const auto ready = [&]()
+  {
+    // Lines counted, not parsed: the run may be writing one.
+    const std::string text = file_text(out + "/history.csv");
+    return std::size_t(std::count(text.begin(), text.end(), '\n')) > rows &&
+           (!checkpoint || std::filesystem::exists(out + "/checkpoint.bin"));
+  };
+  for (int i = 0; i < 1200 && !ready(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
+  kill(pid, signal);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return status;
+}
+#endif
 } // namespace lme_mpm_test
 
 #endif

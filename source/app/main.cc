@@ -78,7 +78,8 @@ private:
 /// The program's options (shown by --help) and the hidden positional FILE.
 struct CommandLine
 {
-  po::options_description options{"Usage: lme-mpm FILE.prm [options]\nOptions"};
+  po::options_description options{"Usage: lme-mpm FILE.prm [options]\n       lme-mpm "
+                                  "--resume DIR [options]\nOptions"};
   po::variables_map vm;
 
   CommandLine()
@@ -88,8 +89,9 @@ struct CommandLine
         "override an entry: --set \"Subsection/Entry=value\" (repeatable)")(
         "threads,t", po::value<unsigned int>(), "worker threads (default: all cores)")(
         "resume", po::value<std::string>(),
-        "continue the run whose checkpoint.bin is in this directory (give the same "
-        "parameter file and --set values)")(
+        "continue the run whose checkpoint.bin is in this directory, with the "
+        "parameters it recorded (DIR/parameters.prm) unless FILE is given; --set "
+        "\"Time/End time=...\" extends a run that has finished")(
         "print-parameters",
         "write the documented parameter file to standard output: the defaults, or with "
         "FILE (and --set) every entry of that run with the values it would read")(
@@ -119,9 +121,13 @@ struct CommandLine
     return true;
   }
 
+  /// The parameter file: FILE, or with --resume DIR alone the parameters the run
+  /// recorded there.
   std::string file() const
   {
-    return vm.count("file") ? vm["file"].as<std::string>() : "";
+    if (vm.count("file"))
+      return vm["file"].as<std::string>();
+    return vm.count("resume") ? vm["resume"].as<std::string>() + "/parameters.prm" : "";
   }
   std::vector<std::string> overrides() const
   {
@@ -154,7 +160,7 @@ int answer_without_run(const CommandLine &cl)
       lme_mpm::print_default_parameters(std::cout);
     return 0;
   }
-  if (!cl.vm.count("file"))
+  if (cl.file().empty())
   {
     std::cerr << "lme-mpm: no parameter file given\n" << cl.options << std::endl;
     return 2;

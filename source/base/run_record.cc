@@ -38,8 +38,10 @@ std::string first_changed_entry(const std::string &before, const std::string &af
   const auto a = input::entry_values(before), b = input::entry_values(after);
   const auto ignored = [](const std::string &key)
   {
+    // Entries that change what is written or how far the run goes, not its steps:
+    // a run resumed with a later End time is extended.
     return key.rfind("Output/", 0) == 0 || key.rfind("Checkpoint/", 0) == 0 ||
-           key == "Time/Maximum steps";
+           key == "Time/Maximum steps" || key == "Time/End time";
   };
   for (const auto &[key, value] : a)
   {

@@ -24,7 +24,7 @@ namespace fracture
 struct EigensofteningEntries
 {
   double tensile_strength = 3e6, critical_opening = 0, band_width = 0;
-  std::string law, damage_rule;
+  std::string law, damage_rule, damage_form;
 
   void entries(EntryList &list)
   {
@@ -57,6 +57,16 @@ struct EigensofteningEntries
              "integral sees the particle's own body only); 'paper': chi = 1 - g((eps_I "
              "- eps_onset) h_eps), the draft's eq. 22 (dissipates more than G_F: "
              "doc/theory.md).");
+    list.add("Damage form", damage_form, "isotropic",
+             Patterns::Selection("isotropic|crack oriented"),
+             "What the damage acts on. 'isotropic': the whole stress, (1 - chi) sigma, "
+             "compression included (the paper's form). 'crack oriented': at onset the "
+             "particle fixes its crack normal n (the max principal direction of its "
+             "neighbourhood's mean stress); the law then follows the strain and stress "
+             "across the crack, and the damage acts on the normal traction n . sigma "
+             ". n while it opens the crack and on the shear traction on the crack "
+             "plane (shear retention 1 - chi), while compression across a closed crack "
+             "and the stress parallel to it are carried undamaged (doc/theory.md).");
   }
 };
 
@@ -91,6 +101,8 @@ public:
     band_width    = in.band_width;
     paper_rule    = in.damage_rule == "paper";
     measured_band = in.damage_rule == "measured band";
+    oriented      = in.damage_form == "crack oriented";
+    coupling      = c.lame_coupling;
     // A band wider than M / (f_t max|g'|) snaps back: the softening branch cannot be
     // followed. Checked with the P-wave modulus here and per particle at onset.
     AssertThrow(
@@ -112,6 +124,8 @@ public:
   double epsilon(const double h) const override { return C_eps * h; }
   /// Far enough to hold a crack band (band_cells h either side) for its opening.
   bool reads_crack_strains() const override { return measured_band; }
+  /// Crack-oriented damage takes its normal from the neighbourhood's mean stress.
+  bool reads_stress_tensors() const override { return oriented; }
   double search_radius(const double h) const override
   {
     return std::max(C_eps, measured_band ? band_cells : 0.0) * h;
@@ -134,27 +148,49 @@ public:
         continue;
       // Lengths from the particle's own cell: on a graded grid a crack in coarse cells
       // spreads over a wider band than one in fine cells.
-      const double h_p   = F.spacing_of(p, grid_spacing);
-      const double eps   = C_eps * h_p;
-      const double eps2  = eps * eps;
-      const double eps_I = max_principal(P.strain[p]);
-      const double sig_I = F.max_principal_stress[p];
+      const double h_p  = F.spacing_of(p, grid_spacing);
+      const double eps  = C_eps * h_p;
+      const double eps2 = eps * eps;
+      // What drives the damage: the normal strain and stress across the particle's
+      // crack once it has an oriented one, the max principal ones otherwise.
+      const bool cracked      = has_crack_normal(P, p);
+      const Tensor<1, dim> &n = P.crack_normal[p];
+      const double eps_I = cracked ? n * (P.strain[p] * n) : max_principal(P.strain[p]);
+      const double sig_I = cracked ? n * (P.stress[p] * n) : F.max_principal_stress[p];
       if (P.onset_strain[p] == 0)
       {
         if (!nb.has_row(p))
           continue;
+        // With oriented damage a cracked neighbour's stress follows its crack's law,
+        // not the field the onset samples: the mean is over the intact ones.
         double ms = 0, m = 0;
         for (auto q = nb.begin(p); q != nb.end(p); ++q)
-          if (P.position[*q].distance_square(P.position[p]) <= eps2)
+          if (P.position[*q].distance_square(P.position[p]) <= eps2 &&
+              !(oriented && F.cracked[*q]))
           {
             ms += P.mass[*q] * F.max_principal_stress[*q];
             m += P.mass[*q];
           }
         // Onset needs the particle itself in tension, so that its modulus is known.
-        if (ms > f_t * m && eps_I > 0 && sig_I > 0)
+        if (!(ms > f_t * m && eps_I > 0 && sig_I > 0))
+          continue;
+        if (!oriented)
         {
           P.onset_strain[p] = eps_I;
           P.onset_stress[p] = sig_I;
+          continue;
+        }
+        // The crack opens across the max principal direction of the neighbourhood's
+        // mean stress, and its law starts from the strain and stress across it.
+        const Tensor<1, dim> normal = onset_normal(P, nb, F, p, eps2);
+        const double eps_n          = normal * (P.strain[p] * normal),
+                     sig_n          = normal * (P.stress[p] * normal);
+        if (eps_n > 0 && sig_n > 0)
+        {
+          P.onset_strain[p]   = eps_n;
+          P.onset_stress[p]   = sig_n;
+          P.crack_normal[p]   = normal;
+          P.crack_coupling[p] = coupling;
         }
         continue;
       }
@@ -197,12 +233,20 @@ public:
       const double chi     = std::min(1.0, std::max(chi_old, chi_new));
       if (chi > chi_old)
       {
-        // Secant damage: losing d chi of sigma : eps / 2 dissipates it.
-        P.dissipated[p] +=
-            (chi - chi_old) * P.initial_volume[p] * 0.5 * (P.stress[p] * P.strain[p]);
+        // Secant damage: the energy density is linear in chi, so losing d chi of it
+        // dissipates d chi times what full damage would take, sigma : eps / 2 with
+        // isotropic damage, and the part across the crack with an oriented one.
+        const double released =
+            cracked ? 0.5 * ((P.stress[p] -
+                              cracked_stress(P.stress[p], n, 1.0, P.crack_coupling[p])) *
+                             P.strain[p])
+                    : 0.5 * (P.stress[p] * P.strain[p]);
+        P.dissipated[p] += (chi - chi_old) * P.initial_volume[p] * released;
         P.damage[p] = chi;
       }
-      if (chi >= 1)
+      // An oriented crack fully open still carries compression across it and the
+      // stress parallel to it: it is not failed.
+      if (chi >= 1 && !cracked)
         P.failed[p] = 1;
     }
     if (snapped)
@@ -237,7 +281,7 @@ private:
     const double s0 = law_peak(P.onset_stress[p]), r = s0 / f_t, w_end = w_c / r;
     if (!(eps_I > 0 && sig_I > 0) || !nb.has_row(p))
       return 0;
-    const Tensor<1, dim> n = eigenvectors(P.strain[p])[0].second;
+    const Tensor<1, dim> n = crack_direction(P, p);
     const double rho = h_p, rho2 = rho * rho;
     const auto kernel = [&](const double t2)
     {
@@ -334,7 +378,7 @@ private:
       if (shared <= band)
         continue;
       if (!have_normal) // only once a neighbour is more open than p
-        n = eigenvectors(P.strain[p])[0].second, have_normal = true;
+        n = crack_direction(P, p), have_normal = true;
       const Tensor<1, dim> d = P.position[*q] - P.position[p];
       const double along     = d * n;
       if (std::abs(along) <= along_max && d.norm_square() - along * along <= off2)
@@ -367,11 +411,46 @@ private:
     return 0.5 * (lo + hi);
   }
 
+  /// The direction across particle @p p's crack: its oriented crack's normal, or its
+  /// max principal strain direction.
+  static Tensor<1, dim> crack_direction(const ParticleStore<dim> &P, const std::size_t p)
+  {
+    return has_crack_normal(P, p) ? P.crack_normal[p]
+                                  : eigenvectors(P.strain[p])[0].second;
+  }
+
+  /**
+   * The normal of the crack particle @p p opens at onset: the max principal direction
+   * of the mass-weighted mean stress over its epsilon-neighbourhood (radius squared
+   * @p eps2; the stresses the onset mean reads, FractureFields::stress), the mean whose
+   * max principal value reached f_t.
+   */
+  static Tensor<1, dim> onset_normal(const ParticleStore<dim> &P,
+                                     const Neighbourhood<dim> &nb,
+                                     const FractureFields &F, const std::size_t p,
+                                     const double eps2)
+  {
+    constexpr unsigned int n_c = SymmetricTensor<2, dim>::n_independent_components;
+    SymmetricTensor<2, dim> mean;
+    for (auto q = nb.begin(p); q != nb.end(p); ++q)
+      if (P.position[*q].distance_square(P.position[p]) <= eps2 && !F.cracked[*q])
+      {
+        unsigned int c = 0;
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = i; j < dim; ++j)
+            mean[i][j] += P.mass[*q] * F.stress[*q * n_c + c++];
+      }
+    return eigenvectors(mean)[0].second;
+  }
+
   /// The peak of a particle's cohesive law from its stress at onset: that stress,
   /// but no more than f_t (see update()).
   double law_peak(const double onset_stress) const { return std::min(onset_stress, f_t); }
 
   double grid_spacing, thickness, C_eps = 0, f_t = 0, w_c = 0, band_width = 0;
+  /// Crack-oriented damage, and lambda / M of the material.
+  bool oriented   = false;
+  double coupling = 0;
   /// How far either side of a particle its crack band's opening is summed, in cells.
   static constexpr double band_cells = 3;
   bool paper_rule = false, measured_band = false;

@@ -26,6 +26,26 @@ void FractureCoupling<dim>::declare_parameters(ParameterHandler &prm,
   }
 }
 
+namespace
+{
+/**
+ * lambda / M of @p material: the stress it gives across a uniaxial strain increment
+ * over the stress along it, asked of the material itself on one particle (so the
+ * plane assumption is the material's); 0 for a material without a stress along it.
+ */
+template <int dim>
+double lame_coupling(const Material<dim> &material, const unsigned int id)
+{
+  ParticleStore<dim> probe;
+  probe.add(Point<dim>(), 1.0, 1.0, id, 0);
+  probe.strain_increment[0][0][0] = 1e-6;
+  probe.strain[0][0][0]           = 1e-6;
+  material.update_stress(probe, 0, 1, id);
+  const double along = probe.stress[0][0][0];
+  return along > 0 ? probe.stress[0][1][1] / along : 0.0;
+}
+} // namespace
+
 template <int dim>
 void FractureCoupling<dim>::parse_parameters(ParameterHandler &prm,
                                              const MaterialSet<dim> &materials,
@@ -51,6 +71,7 @@ void FractureCoupling<dim>::parse_parameters(ParameterHandler &prm,
       fc.thickness      = thickness;
       fc.dim            = dim;
       fc.p_wave_modulus = materials[m].density() * std::pow(materials[m].wave_speed(), 2);
+      fc.lame_coupling  = lame_coupling(materials[m], m);
       fc.section        = section + "/Fracture";
       models.push_back(FractureModelRegistry<dim>::instance().create(model, prm, fc));
       any_model = true;
@@ -156,12 +177,14 @@ void FractureCoupling<dim>::prepare(const ParticleStore<dim> &store)
   radius         = 0;
   seeded_rows    = true;
   measures_bands = false;
+  reads_stresses = false;
   thresholds.fill(std::numeric_limits<double>::infinity());
   for (const auto &f : models)
     if (f)
     {
       radius                  = std::max(radius, f->search_radius(h_largest));
       measures_bands          = measures_bands || f->reads_crack_strains();
+      reads_stresses          = reads_stresses || f->reads_stress_tensors();
       const FractureTrigger t = f->trigger(h_largest);
       if (t.field == FractureTrigger::Field::none)
         seeded_rows = false;
@@ -175,6 +198,9 @@ void FractureCoupling<dim>::prepare(const ParticleStore<dim> &store)
   fields.energy_density.resize(n);
   fields.crack_opening.resize(n);
   fields.crack_strain.resize(measures_bands ? n : 0);
+  fields.stress.resize(
+      reads_stresses ? n * SymmetricTensor<2, dim>::n_independent_components : 0);
+  fields.cracked.resize(reads_stresses ? n : 0);
   seeds.resize(n);
   prepared_size    = n;
   prepared_version = store.order_version();
@@ -191,20 +217,42 @@ void FractureCoupling<dim>::take_snapshot(const ParticleStore<dim> &store,
                    thresholds[static_cast<unsigned int>(Field::energy_density)];
   for (std::size_t p = begin; p < end; ++p)
   {
-    const bool alive = !store.failed[p];
-    const double s   = alive ? max_principal(store.stress[p]) : 0.0;
+    const bool alive   = !store.failed[p];
+    const bool cracked = has_crack_normal(store, p);
+    // The neighbours' onset mean reads the undamaged stress of a softening particle,
+    // with either damage form, and nothing of one whose crack is fully open: failed
+    // with isotropic damage, open with an oriented one (whose undamaged stress across
+    // the crack grows with the opening).
+    const bool loads = alive && !(cracked && store.damage[p] >= 1);
+    const double s   = loads ? max_principal(store.stress[p]) : 0.0;
     const double w =
-        alive ? 0.5 * (1 - store.damage[p]) * (store.stress[p] * store.strain[p]) : 0.0;
+        !alive    ? 0.0
+        : cracked ? stored_energy_density(store, p)
+                  : 0.5 * (1 - store.damage[p]) * (store.stress[p] * store.strain[p]);
     fields.max_principal_stress[p] = s;
-    fields.energy_density[p]       = w;
-    fields.crack_opening[p]        = store.crack_opening[p];
+    if (reads_stresses)
+    {
+      fields.cracked[p] = cracked;
+      const SymmetricTensor<2, dim> sigma =
+          loads ? store.stress[p] : SymmetricTensor<2, dim>();
+      constexpr unsigned int n_c = SymmetricTensor<2, dim>::n_independent_components;
+      unsigned int c             = 0;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = i; j < dim; ++j)
+          fields.stress[p * n_c + c++] = sigma[i][j];
+    }
+    fields.energy_density[p] = w;
+    fields.crack_opening[p]  = store.crack_opening[p];
     // Only softening and failed particles have one (a principal strain each), and only
     // a model that measures its band reads them.
     if (measures_bands)
     {
+      // Along the crack's normal where the particle has one.
       const double chi = store.failed[p] ? 1.0 : store.damage[p];
-      fields.crack_strain[p] =
-          chi > 0 ? chi * std::max(0.0, max_principal(store.strain[p])) : 0.0;
+      const double strain =
+          cracked ? store.crack_normal[p] * (store.strain[p] * store.crack_normal[p])
+                  : max_principal(store.strain[p]);
+      fields.crack_strain[p] = chi > 0 ? chi * std::max(0.0, strain) : 0.0;
     }
     // Only alive particles of a material with a model read their row; a softening
     // particle reads it every step where its band shares their openings or is

@@ -170,17 +170,20 @@ void Bodies<dim>::write_header(std::ostream &out, const bool forces) const
   {
     if (name.empty())
       continue;
-    for (const char *q : {"force", "displacement"})
-      if (forces || q[0] == 'd')
+    if (forces)
+      for (const char *q : {"", "mean_"})
         for (unsigned int d = 0; d < dim; ++d)
-          out << "," << q << "_" << name << "_"
-              << "xyz"[d];
+          out << ",force_" << name << "_" << q << "xyz"[d];
+    for (unsigned int d = 0; d < dim; ++d)
+      out << ",displacement_" << name << "_"
+          << "xyz"[d];
   }
 }
 
 template <int dim>
 void Bodies<dim>::write_row(std::ostream &out, const ParticleStore<dim> &store,
-                            const std::vector<Tensor<1, dim>> *forces) const
+                            const std::vector<Tensor<1, dim>> *forces,
+                            const std::vector<Tensor<1, dim>> *mean_forces) const
 {
   if (!any_named())
     return;
@@ -198,8 +201,9 @@ void Bodies<dim>::write_row(std::ostream &out, const ParticleStore<dim> &store,
     if (names_[b].empty())
       continue;
     if (forces)
-      for (unsigned int d = 0; d < dim; ++d)
-        out << "," << (*forces)[b][d];
+      for (const auto *f : {forces, mean_forces})
+        for (unsigned int d = 0; d < dim; ++d)
+          out << "," << (*f)[b][d];
     for (unsigned int d = 0; d < dim; ++d)
       out << "," << (mass[b] > 0 ? moment[b][d] / mass[b] : 0.0);
   }

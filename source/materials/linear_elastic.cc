@@ -90,8 +90,10 @@ double LinearElastic<dim>::strain_energy(const ParticleStore<dim> &particles,
   double w = 0;
   for (std::size_t p = begin; p < end; ++p)
     if (particles.material_id[p] == material_id)
-      w += 0.5 * (1 - particles.damage[p]) * particles.initial_volume[p] *
-           (particles.stress[p] * particles.strain[p]);
+      w += has_crack_normal(particles, p)
+               ? particles.initial_volume[p] * stored_energy_density(particles, p)
+               : 0.5 * (1 - particles.damage[p]) * particles.initial_volume[p] *
+                     (particles.stress[p] * particles.strain[p]);
   return w;
 }
 

@@ -5,12 +5,15 @@
 namespace lme_mpm
 {
 template <int dim>
-void ForceMeans<dim>::reset(const unsigned int n_bodies)
+void ForceMeans<dim>::reset(const unsigned int n_bodies, const double window_time)
 {
   peak_force.assign(n_bodies, 0.0);
   impulse.assign(n_bodies * dim, 0.0);
   impulse_time = 0;
   mean_force.assign(n_bodies, Tensor<1, dim>());
+  window_force.assign(n_bodies, Tensor<1, dim>());
+  window.reset(n_bodies * dim, window_time);
+  flat.assign(n_bodies * dim, 0.0);
 }
 
 template <int dim>
@@ -19,12 +22,21 @@ void ForceMeans<dim>::book(const std::vector<Tensor<1, dim>> &f, const double dt
   impulse_time += dt;
   for (unsigned int b = 0; b < f.size(); ++b)
     for (unsigned int d = 0; d < dim; ++d)
+    {
       impulse[b * dim + d] += dt * f[b][d];
+      flat[b * dim + d] = f[b][d];
+    }
+  window.book(flat, dt);
+  for (unsigned int b = 0; b < f.size(); ++b)
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      window_force[b][d] = window.mean(b * dim + d);
+    peak_force[b] = std::max(peak_force[b], window_force[b].norm());
+  }
 }
 
 template <int dim>
-void ForceMeans<dim>::close_row(const std::vector<Tensor<1, dim>> &f,
-                                const bool track_peak)
+void ForceMeans<dim>::close_row(const std::vector<Tensor<1, dim>> &f)
 {
   for (unsigned int b = 0; b < f.size(); ++b)
   {
@@ -33,8 +45,6 @@ void ForceMeans<dim>::close_row(const std::vector<Tensor<1, dim>> &f,
       for (unsigned int d = 0; d < dim; ++d)
         m[d] = impulse[b * dim + d] / impulse_time;
     mean_force[b] = m;
-    if (track_peak)
-      peak_force[b] = std::max(peak_force[b], m.norm());
   }
   std::fill(impulse.begin(), impulse.end(), 0.0);
   impulse_time = 0;

@@ -90,7 +90,7 @@ void ParticleOutput<dim>::patches(
   // undamaged one, the max principal effective stress, damage, ids.
   names.clear();
   vectors.clear();
-  for (const char *v : {"displacement", "velocity"})
+  for (const char *v : {"displacement", "velocity", "crack_normal"})
   {
     vectors.emplace_back(names.size(), names.size() + dim - 1, v,
                          DataComponentInterpretation::component_is_part_of_vector);
@@ -119,6 +119,8 @@ void ParticleOutput<dim>::patches(
       patch.data(k++, 0) = particles.position[p][d] - particles.reference_position[p][d];
     for (unsigned int d = 0; d < dim; ++d)
       patch.data(k++, 0) = particles.velocity[p][d];
+    for (unsigned int d = 0; d < dim; ++d)
+      patch.data(k++, 0) = particles.crack_normal[p][d];
     const SymmetricTensor<2, dim> stress = effective_stress(particles, p);
     for (const auto *s : {&stress, &particles.stress[p]})
       for (unsigned int i = 0; i < dim; ++i)

@@ -247,7 +247,24 @@ public:
       }
     results["damage_share_near_loaded_diameter"]  = all > 0 ? near / all : 0;
     results["softened_band_height_over_diameter"] = hi > lo ? (hi - lo) / diameter : 0;
-    add_crack_energy(p, d, length, fracture_energy, results);
+    // The splitting crack: its band (of the particles with damage >= 0.5) and its area,
+    // the length of the loaded diameter that has softened (damage > 0 within half a
+    // band of it) times the thickness.
+    const CrackPath path = crack_path(p, d, length, 0.5);
+    const CrackBand band = crack_band(p, d, path, path.points);
+    add_crack_band(band, results);
+    const double half = 0.5 * std::max(band.width, path.spacing);
+    double top = -1e300, bottom = 1e300;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p.body_id[i] == d && p.damage[i] > 0 &&
+          std::abs(p.reference_position[i][0] - cx) <= half)
+        top    = std::max(top, p.reference_position[i][1]),
+        bottom = std::min(bottom, p.reference_position[i][1]);
+    const double area     = top > bottom ? (top - bottom + path.spacing) * length : 0.0;
+    results["crack_area"] = area;
+    const auto dissipated = results.find("dissipated_energy");
+    if (fracture_energy > 0 && area > 0 && dissipated != results.end())
+      results["fracture_energy_ratio"] = dissipated->second / (fracture_energy * area);
   }
 
 private:

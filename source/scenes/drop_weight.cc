@@ -1,5 +1,6 @@
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/base/parameters.h>
+#include <lme_mpm/output/moving_mean.h>
 #include <lme_mpm/scenes/scene_tools.h>
 
 #include <cmath>
@@ -29,14 +30,18 @@ namespace scenes
  * support's axis, from the beam's bottom face down, is held at zero.
  *
  * History: impact_force (the force on the hammer, upwards, N, for the real thickness:
- * the contact force with contact, the hammer's momentum rate on a single field),
- * hammer_momentum_rate and beam_momentum_rate (the change of the body's momentum over
- * the row's interval divided by its length), reaction_force (the upward forces of the
- * supports on the beam, summed, as means over the row's interval), cmod (crack-mouth
+ * the contact force with contact, the hammer's momentum rate on a single field) and
+ * reaction_force (the upward forces of the supports on the beam, summed), both as
+ * means over the force window (Output/Force window) ending at the row, and their
+ * means over the row's interval (impact_force_mean, reaction_force_mean), beside
+ * hammer_momentum_rate_mean and beam_momentum_rate_mean (the change of the body's
+ * momentum over the row's interval divided by its length); cmod (crack-mouth
  * opening), damage_total, crack_tip and softening_front (how far the fully softened
  * crack and the front of softening have run up the ligament). Summary: the peaks of
  * the impact and reaction forces and their times from the first contact, the fronts'
- * largest speeds over a gauge length and their ratios to the Rayleigh speed.
+ * largest speeds over a gauge length and their ratios to the Rayleigh speed, all
+ * tracked after every step (observe()), so that they do not depend on the output
+ * cadence.
  */
 /// The drop-weight scene's entries, declared and read from this one list.
 struct DropWeightEntries
@@ -237,6 +242,7 @@ public:
     writer.set("Material " + material + "/Density", number(density), entry("Hammer mass"),
                " for the hammer's material");
     // The beam's Rayleigh speed, the scale of its crack speed (linear elastic beams).
+    fracture_energy = fracture_energy_of(writer, writer.body(beam, entry("Beam")));
     const std::string concrete =
         "Material " +
         writer.get(input::subsection_name("Body", writer.body(beam, entry("Beam"))) +
@@ -267,7 +273,8 @@ public:
 
   void write_history_header(std::ostream &out) const override
   {
-    out << ",impact_force,hammer_momentum_rate,beam_momentum_rate,reaction_force,cmod,"
+    out << ",impact_force,impact_force_mean,hammer_momentum_rate_mean,"
+           "beam_momentum_rate_mean,reaction_force,reaction_force_mean,cmod,"
            "damage_total,crack_tip,softening_front";
   }
 
@@ -276,75 +283,128 @@ public:
     const ParticleStore<dim> &p = *state.particles;
     const unsigned int b        = body_index(state, beam, entry("Beam"));
     const unsigned int h        = body_index(state, hammer, entry("Hammer"));
-    // The hammer's momentum (for the real thickness in 2D: particle masses already
-    // carry it).
     double momentum = 0, beam_momentum = 0;
     for (std::size_t i = 0; i < p.size(); ++i)
       if (p.body_id[i] == h)
         momentum += p.mass[i] * p.velocity[i][1];
       else if (p.body_id[i] == b)
         beam_momentum += p.mass[i] * p.velocity[i][1];
-    const double interval = state.time - last_time;
-    const double rate     = interval > 0 ? (momentum - last_momentum) / interval : 0.0;
-    const double beam_rate =
-        interval > 0 ? (beam_momentum - last_beam_momentum) / interval : 0.0;
-    double impact = rate, reaction = 0, support_impulse = 0;
+    // The means over the row's interval: momentum changes and impulses over its
+    // length (0 in the first row).
+    const double interval = state.time - last_row.time;
+    const auto rate       = [&](const double now, const double before)
+    { return interval > 0 ? (now - before) / interval : 0.0; };
+    const double hammer_rate     = rate(momentum, last_row.momentum);
+    const double beam_rate       = rate(beam_momentum, last_row.beam_momentum);
+    const double support_impulse = node_supports ? supports_impulse(state) : 0.0;
+    double impact_mean = hammer_rate, reaction_mean = 0;
     if (!single_field)
-      impact = (*state.contact_forces)[h][1];
+      impact_mean = (*state.contact_force_means)[h][1];
     if (node_supports)
-    {
-      // The constraints' impulses over the row's interval: their mean reaction.
-      support_impulse = constraint_named(state, left, entry("Supports")).impulse()[1] +
-                        constraint_named(state, right, entry("Supports")).impulse()[1];
-      if (interval > 0)
-        reaction = (support_impulse - last_support_impulse) / interval;
-    }
+      reaction_mean = rate(support_impulse, last_row.support_impulse);
     else
     {
-      // What the supports push the beam up with: minus the forces they receive.
+      const auto &force = *state.contact_force_means;
+      reaction_mean     = -force[body_index(state, left, entry("Supports"))][1] -
+                      force[body_index(state, right, entry("Supports"))][1];
+    }
+    last_row       = {state.time, momentum, beam_momentum, support_impulse};
+    const double g = 0.5 * notch_width + 0.002, r = 0.0015;
+    const double cmod = mean_displacement_near(p, b, Point<2>(cx + g, cy + r), r)[0] -
+                        mean_displacement_near(p, b, Point<2>(cx - g, cy + r), r)[0];
+    out << "," << impact << "," << impact_mean << "," << hammer_rate << "," << beam_rate
+        << "," << reaction << "," << reaction_mean << "," << cmod << ","
+        << damaged_volume(p, b) << "," << crack.position << "," << softening.position;
+  }
+
+  void observe(const SceneState<dim> &state) override
+  {
+    const ParticleStore<dim> &p = *state.particles;
+    const unsigned int b        = body_index(state, beam, entry("Beam"));
+    const unsigned int h        = body_index(state, hammer, entry("Hammer"));
+    const double dt = state.step_length, t = state.time;
+    // This step's forces where no contact force gives them: on one field the
+    // hammer's momentum rate over the step, and the node-set supports' reactions;
+    // their means over the force window.
+    if (windows.size() == 0)
+      windows.reset(2, state.force_window);
+    double step_values[2] = {0, 0};
+    if (single_field)
+    {
+      double momentum = 0;
+      for (std::size_t i = 0; i < p.size(); ++i)
+        if (p.body_id[i] == h && state.owned(i))
+          momentum += p.mass[i] * p.velocity[i][1];
+      momentum       = state.ranks->sum(momentum);
+      step_values[0] = (momentum - step_momentum) / dt;
+      step_momentum  = momentum;
+    }
+    if (node_supports)
+      step_values[1] = constraint_named(state, left, entry("Supports")).reaction()[1] +
+                       constraint_named(state, right, entry("Supports")).reaction()[1];
+    windows.book(step_values, dt);
+    impact = windows.mean(0), reaction = windows.mean(1);
+    if (!single_field)
+      impact = (*state.contact_forces)[h][1];
+    if (!node_supports)
+    {
       const auto &force = *state.contact_forces;
       reaction          = -force[body_index(state, left, entry("Supports"))][1] -
                  force[body_index(state, right, entry("Supports"))][1];
     }
-    // The crack mouth: material points on the bottom face 2 mm outside the notch.
-    const double g = 0.5 * notch_width + 0.002, r = 0.0015;
-    const double cmod = mean_displacement_near(p, b, Point<2>(cx + g, cy + r), r)[0] -
-                        mean_displacement_near(p, b, Point<2>(cx - g, cy + r), r)[0];
-    const double damaged = damaged_volume(p, b);
-    // The crack from the notch: how far its fully softened tip and its softening
-    // front have run up the ligament; the times they pass each gauge length give
-    // their speeds.
-    const Point<2> notch_tip(cx, cy + notch_depth);
-    const double thickness = dim == 2 ? width : 1.0;
-    const double tip =
-        crack_tip_distance(p, b, thickness, notch_tip, Tensor<1, 2>({0.0, 1.0}));
-    const double front = crack_tip_distance(p, b, thickness, notch_tip,
-                                            Tensor<1, 2>({0.0, 1.0}), softening_onset);
-    crack.advance(tip, last_time, state.time, gauge);
-    softening.advance(front, last_time, state.time, gauge);
-    // Peaks, timed from the start of the first interval with a contact force.
     if (first_contact < 0 && std::abs(impact) > 0)
-      first_contact = last_time;
+      first_contact = t - dt;
     if (first_contact >= 0)
     {
       if (impact > peak_impact)
-        peak_impact = impact, time_of_peak_impact = state.time - first_contact;
+        peak_impact = impact, time_of_peak_impact = t - first_contact;
       if (reaction > peak_reaction)
-        peak_reaction = reaction, time_of_peak_reaction = state.time - first_contact;
+        peak_reaction = reaction, time_of_peak_reaction = t - first_contact;
     }
-    last_time            = state.time;
-    last_momentum        = momentum;
-    last_beam_momentum   = beam_momentum;
-    last_support_impulse = support_impulse;
-    out << "," << impact << "," << rate << "," << beam_rate << "," << reaction << ","
-        << cmod << "," << damaged << "," << tip << "," << front;
+    // A front moves only when a particle of the beam crosses its damage level:
+    // counted every step, located again (over every particle) when the count changes.
+    const Point<2> notch_tip(cx, cy + notch_depth);
+    const double thickness = dim == 2 ? width : 1.0;
+    for (GaugedFront *front : {&crack, &softening})
+    {
+      const double level = front == &crack ? crack_level : softening_onset;
+      double count       = 0;
+      for (std::size_t i = 0; i < p.size(); ++i)
+        if (p.body_id[i] == b && p.damage[i] >= level && state.owned(i))
+          ++count;
+      count = state.ranks->sum(count);
+      if (count == front->count)
+        continue;
+      front->count                  = count;
+      const ParticleStore<dim> &all = state.all_particles();
+      const double distance         = state.ranks->max(
+                  all.size() > 0 ? crack_tip_distance(all, b, thickness, notch_tip,
+                                                      Tensor<1, 2>({0.0, 1.0}), level)
+                                 : 0.0);
+      front->advance(distance, t - dt, t, gauge);
+    }
   }
 
-  void add_results(const SceneState<dim> &,
+  void add_results(const SceneState<dim> &state,
                    std::map<std::string, double> &results) const override
   {
     if (first_contact < 0)
       return;
+    // The ligament's crack: from the notch tip to the crack tip, its band (damage >=
+    // 0.5) and the energy dissipated within one band width of the ligament, over G_F
+    // times its area; what was dissipated farther away (under the hammer, over the
+    // supports) is the off-crack share.
+    const ParticleStore<dim> &p = *state.particles;
+    const unsigned int b        = body_index(state, beam, entry("Beam"));
+    const double thickness      = dim == 2 ? width : 1.0;
+    const Point<2> notch_tip(cx, cy + notch_depth);
+    const CrackPath path = crack_path(p, b, thickness, 0.5, &notch_tip);
+    const CrackBand band = crack_band(p, b, path, {notch_tip, Point<2>(cx, cy + depth)});
+    add_crack_band(band, results);
+    const double area     = crack.position * thickness;
+    results["crack_area"] = area;
+    if (fracture_energy > 0 && area > 0)
+      results["fracture_energy_ratio"] = band.on_crack / (fracture_energy * area);
     results["peak_impact_force"]           = peak_impact;
     results["time_of_peak_impact_force"]   = time_of_peak_impact;
     results["peak_reaction_force"]         = peak_reaction;
@@ -364,10 +424,9 @@ public:
 
   void serialize(Archive &ar) override
   {
-    ar(last_time, last_momentum, last_beam_momentum, last_support_impulse, first_contact,
-       peak_impact, time_of_peak_impact, peak_reaction, time_of_peak_reaction,
-       crack.position, crack.passed, crack.last_pass, crack.max_speed, softening.position,
-       softening.passed, softening.last_pass, softening.max_speed);
+    ar(last_row, step_momentum, impact, reaction, first_contact, peak_impact,
+       time_of_peak_impact, peak_reaction, time_of_peak_reaction, crack, softening);
+    windows.serialize(ar);
   }
 
 private:
@@ -415,23 +474,40 @@ private:
     writer.set(section + "/Components", "y", entry("Supports"));
   }
 
+  /// The supports' vertical impulse since the start (node-set supports).
+  double supports_impulse(const SceneState<dim> &state) const
+  {
+    return constraint_named(state, left, entry("Supports")).impulse()[1] +
+           constraint_named(state, right, entry("Supports")).impulse()[1];
+  }
+
   bool single_field, node_supports;
   double cx = 0.23, cy = 0.025;
   std::string left, right;
-  // What the history rows have seen, in order (kept in checkpoints).
-  mutable double last_time = 0, last_momentum = 0, last_beam_momentum = 0;
-  mutable double last_support_impulse = 0;
-  mutable double first_contact        = -1;
-  mutable double peak_impact = 0, time_of_peak_impact = 0;
-  mutable double peak_reaction = 0, time_of_peak_reaction = 0;
+  /// What the last history row saw, for the means over the next row's interval.
+  struct RowState
+  {
+    double time = 0, momentum = 0, beam_momentum = 0, support_impulse = 0;
+  };
+  mutable RowState last_row;
+  // Tracked after every step (kept in checkpoints): the hammer's momentum (one
+  // field), the step's forces' means over the force window, the first contact and the
+  // peaks.
+  MovingMean windows;
+  double step_momentum = 0, impact = 0, reaction = 0;
+  double first_contact = -1;
+  double peak_impact = 0, time_of_peak_impact = 0;
+  double peak_reaction = 0, time_of_peak_reaction = 0;
   /// A front running up the ligament, timed as strain gauges a gauge length apart
   /// would time it.
   struct GaugedFront
   {
-    /// Its distance above the notch tip at the last row, the gauge levels it has
+    /// Its distance above the notch tip after the last step, the gauge levels it has
     /// passed, when it passed the last, and its fastest run between two levels.
     double position = 0, last_pass = 0, max_speed = 0;
     unsigned int passed = 0;
+    /// Particles at the front's damage level when it was last located.
+    double count = 0;
 
     /// The front at @p now is at @p distance; it was at position at @p before.
     void advance(const double distance, const double before, const double now,
@@ -439,7 +515,7 @@ private:
     {
       while (distance >= (passed + 1) * gauge)
       {
-        // When it passed the level, interpolated linearly between the rows.
+        // When it passed the level, interpolated linearly over the step.
         const double level = (passed + 1) * gauge;
         const double t =
             before + (now - before) * (level - position) / (distance - position);
@@ -452,9 +528,9 @@ private:
   };
   // The fully softened crack and the front where softening has started (damage above
   // this), which is what a gauge on the ligament sees: its strain peaks there.
-  static constexpr double softening_onset = 1e-9;
-  mutable GaugedFront crack, softening;
-  double rayleigh_speed = 0;
+  static constexpr double softening_onset = 1e-9, crack_level = 0.99;
+  GaugedFront crack, softening;
+  double rayleigh_speed = 0, fracture_energy = 0;
 };
 } // namespace scenes
 } // namespace lme_mpm

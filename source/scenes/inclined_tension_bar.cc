@@ -1,5 +1,6 @@
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/base/parameters.h>
+#include <lme_mpm/output/moving_mean.h>
 #include <lme_mpm/scenes/scene_tools.h>
 
 #include <cmath>
@@ -58,10 +59,12 @@ struct InclinedTensionBarEntries
  * across the bar at mid-length (Weak zone material) makes the crack form there,
  * normal to the axis.
  *
- * History: axial_stress (the pulled grip's reaction along the axis, as the mean over
- * the row's interval, over W t) and extension (its displacement along the axis).
- * Summary: peak_stress (the largest axial_stress, N/m^2), crack_area (W t, m^2) and
- * fracture_energy_ratio, dissipated_energy / (G_F crack_area) with the weak zone's G_F.
+ * History: axial_stress (the pulled grip's reaction along the axis over W t, as its
+ * mean over the force window), axial_stress_mean (the same as the mean over the
+ * row's interval) and extension (the grip's displacement along the axis). Summary:
+ * peak_stress (the largest axial_stress over every step, N/m^2), crack_area (W t, m^2)
+ * and fracture_energy_ratio, dissipated_energy / (G_F crack_area) with the weak zone's
+ * G_F.
  */
 template <int dim>
 class InclinedTensionBar : public Scene<dim>, private InclinedTensionBarEntries
@@ -139,7 +142,7 @@ public:
 
   void write_history_header(std::ostream &out) const override
   {
-    out << ",axial_stress,extension";
+    out << ",axial_stress,axial_stress_mean,extension";
   }
 
   void write_history_row(std::ostream &out, const SceneState<dim> &state) const override
@@ -147,14 +150,28 @@ public:
     const NodeConstraint<dim> &grip = constraint_named(state, pulled, entry("Grips"));
     const double impulse            = grip.impulse()[0] * ax + grip.impulse()[1] * ay;
     const double interval           = state.time - last_time;
-    // The pulled grip's reaction pulls the bar towards +axis.
-    const double stress =
+    // The pulled grip's reaction pulls the bar towards +axis: its mean over the row's
+    // interval, beside the mean over the force window.
+    const double mean =
         interval > 0 ? (impulse - last_impulse) / interval / (width * thickness) : 0.0;
     const double extension = grip.displacement()[0] * ax + grip.displacement()[1] * ay;
-    peak_stress            = std::max(peak_stress, stress);
     last_time              = state.time;
     last_impulse           = impulse;
-    out << "," << stress << "," << extension;
+    out << "," << stress << "," << mean << "," << extension;
+  }
+
+  void observe(const SceneState<dim> &state) override
+  {
+    // The axial stress from the grip's reaction of this step, its mean over the force
+    // window, and the largest that mean reaches.
+    const NodeConstraint<dim> &grip = constraint_named(state, pulled, entry("Grips"));
+    if (window.size() == 0)
+      window.reset(1, state.force_window);
+    const double step_stress =
+        (grip.reaction()[0] * ax + grip.reaction()[1] * ay) / (width * thickness);
+    window.book(&step_stress, state.step_length);
+    stress      = window.mean(0);
+    peak_stress = std::max(peak_stress, stress);
   }
 
   void add_results(const SceneState<dim> &,
@@ -168,7 +185,11 @@ public:
       results["fracture_energy_ratio"] = dissipated->second / (fracture_energy * area);
   }
 
-  void serialize(Archive &ar) override { ar(last_time, last_impulse, peak_stress); }
+  void serialize(Archive &ar) override
+  {
+    ar(last_time, last_impulse, stress, peak_stress);
+    window.serialize(ar);
+  }
 
 private:
   static std::string entry(const std::string &name)
@@ -179,8 +200,11 @@ private:
   double thickness;
   double cx = 0.25, cy = 0.25, ax = 1, ay = 0, fracture_energy = 0;
   std::string held, pulled;
-  // What the history rows have seen, in order (kept in checkpoints).
-  mutable double last_time = 0, last_impulse = 0, peak_stress = 0;
+  // What the last history row saw, and what observe() tracks after every step (kept
+  // in checkpoints).
+  mutable double last_time = 0, last_impulse = 0;
+  MovingMean window;
+  double stress = 0, peak_stress = 0;
 };
 } // namespace scenes
 } // namespace lme_mpm

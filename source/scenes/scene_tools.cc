@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <sstream>
@@ -72,11 +73,17 @@ std::string load_fell_below(const SceneState<dim> &state, const unsigned int bod
   if (!(peak > 0 && (*state.contact_forces)[body].norm() < fraction * peak))
     return {};
   // A load that dips while the contact forms (before anything softens) is not the
-  // specimen failing.
+  // specimen failing. Every rank sees the same forces, so all of them ask this.
   if (state.particles != nullptr)
   {
     const auto &damage = state.particles->damage;
-    if (std::none_of(damage.begin(), damage.end(), [](const double d) { return d > 0; }))
+    double softening =
+        std::any_of(damage.begin(), damage.end(), [](const double d) { return d > 0; })
+            ? 1.0
+            : 0.0;
+    if (state.ranks != nullptr)
+      softening = state.ranks->max(softening);
+    if (softening == 0)
       return {};
   }
   return "the load fell below " + number(fraction) + " of its peak";
@@ -153,18 +160,45 @@ CrackClusters crack_clusters(const ParticleStore<dim> &p, const unsigned int bod
   return result;
 }
 
-template <int dim>
-double crack_path_length(const ParticleStore<dim> &p, const unsigned int body,
-                         const double thickness, const double threshold)
+double CrackPath::length() const
 {
-  const CrackClusters cracks = crack_clusters(p, body, thickness, threshold);
-  if (cracks.clusters.empty())
+  if (points.empty())
     return 0;
-  const double s                          = cracks.spacing;
+  double l = spacing;
+  for (std::size_t k = 1; k < points.size(); ++k)
+    l += points[k].distance(points[k - 1]);
+  return l;
+}
+
+template <int dim>
+CrackPath crack_path(const ParticleStore<dim> &p, const unsigned int body,
+                     const double thickness, const double threshold,
+                     const Point<2> *origin)
+{
+  CrackPath path;
+  const CrackClusters cracks = crack_clusters(p, body, thickness, threshold);
+  path.spacing               = cracks.spacing;
+  // The largest cluster, or with an origin the one that comes nearest to it (the
+  // crack from a notch starts within a particle or two of the notch's tip).
   const std::vector<std::size_t> *largest = nullptr;
+  double nearest                          = std::numeric_limits<double>::max();
   for (const auto &members : cracks.clusters)
-    if (!largest || members.size() > largest->size())
-      largest = &members;
+  {
+    if (origin == nullptr)
+    {
+      if (!largest || members.size() > largest->size())
+        largest = &members;
+      continue;
+    }
+    double d = std::numeric_limits<double>::max();
+    for (const std::size_t i : members)
+      d = std::min(d, std::hypot(p.reference_position[i][0] - (*origin)[0],
+                                 p.reference_position[i][1] - (*origin)[1]));
+    if (d < nearest)
+      nearest = d, largest = &members;
+  }
+  if (largest == nullptr)
+    return path;
   // Its main axis: the principal direction of the positions' covariance.
   double mx = 0, my = 0;
   for (const std::size_t i : *largest)
@@ -179,24 +213,85 @@ double crack_path_length(const ParticleStore<dim> &p, const unsigned int body,
   }
   const double phi = 0.5 * std::atan2(2 * cxy, cxx - cyy);
   const double ux = std::cos(phi), uy = std::sin(phi);
-  // Centroids of the slices one spacing wide along the axis, in order.
-  std::map<long, std::array<double, 3>> slices;
+  // Slices one spacing wide along the axis: their centroids, in order, and the
+  // extent of their particles across the axis.
+  struct Slice
+  {
+    double x = 0, y = 0, n = 0, lo = 1e300, hi = -1e300;
+  };
+  std::map<long, Slice> slices;
+  const double s = path.spacing;
   for (const std::size_t i : *largest)
   {
     const double x = p.reference_position[i][0], y = p.reference_position[i][1];
-    auto &c = slices[long(std::floor(((x - mx) * ux + (y - my) * uy) / s))];
-    c[0] += x, c[1] += y, c[2] += 1;
+    Slice &c            = slices[long(std::floor(((x - mx) * ux + (y - my) * uy) / s))];
+    const double across = -(x - mx) * uy + (y - my) * ux;
+    c.x += x, c.y += y, c.n += 1;
+    c.lo = std::min(c.lo, across), c.hi = std::max(c.hi, across);
   }
-  double length = s, px = 0, py = 0;
-  bool first = true;
   for (const auto &[index, c] : slices)
   {
-    const double x = c[0] / c[2], y = c[1] / c[2];
-    if (!first)
-      length += std::hypot(x - px, y - py);
-    px = x, py = y, first = false;
+    path.points.emplace_back(c.x / c.n, c.y / c.n);
+    path.widths.push_back(c.hi - c.lo + s);
   }
-  return length;
+  return path;
+}
+
+template <int dim>
+double crack_path_length(const ParticleStore<dim> &p, const unsigned int body,
+                         const double thickness, const double threshold)
+{
+  return crack_path(p, body, thickness, threshold).length();
+}
+
+double distance_to_polyline(const Point<2> &x, const std::vector<Point<2>> &line)
+{
+  if (line.size() == 1)
+    return x.distance(line[0]);
+  double d = std::numeric_limits<double>::max();
+  for (std::size_t k = 1; k < line.size(); ++k)
+  {
+    const Tensor<1, 2> a = line[k] - line[k - 1], r = x - line[k - 1];
+    const double t =
+        a.norm_square() > 0 ? std::clamp((r * a) / a.norm_square(), 0.0, 1.0) : 0.0;
+    d = std::min(d, (r - t * a).norm());
+  }
+  return d;
+}
+
+template <int dim>
+CrackBand crack_band(const ParticleStore<dim> &p, const unsigned int body,
+                     const CrackPath &path, const std::vector<Point<2>> &line)
+{
+  CrackBand band;
+  if (path.widths.empty() || line.empty())
+    return band;
+  // The median width over the central 80 % of the path.
+  const std::size_t n = path.widths.size();
+  std::vector<double> central(path.widths.begin() + n / 10,
+                              path.widths.begin() + (n - n / 10));
+  std::sort(central.begin(), central.end());
+  band.width =
+      central.size() % 2
+          ? central[central.size() / 2]
+          : 0.5 * (central[central.size() / 2 - 1] + central[central.size() / 2]);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.body_id[i] == body && p.dissipated[i] > 0)
+    {
+      band.dissipated += p.dissipated[i];
+      const Point<2> x(p.reference_position[i][0], p.reference_position[i][1]);
+      if (distance_to_polyline(x, line) <= band.width)
+        band.on_crack += p.dissipated[i];
+    }
+  band.off_crack_share =
+      band.dissipated > 0 ? (band.dissipated - band.on_crack) / band.dissipated : 0.0;
+  return band;
+}
+
+void add_crack_band(const CrackBand &band, std::map<std::string, double> &results)
+{
+  results["crack_band_width"]            = band.width;
+  results["dissipation_off_crack_share"] = band.off_crack_share;
 }
 
 template <int dim>
@@ -344,6 +439,14 @@ template double crack_tip_distance(const ParticleStore<2> &, unsigned int, doubl
 template double crack_tip_distance(const ParticleStore<3> &, unsigned int, double,
                                    const Point<2> &, const Tensor<1, 2> &, double);
 template double crack_path_length(const ParticleStore<2> &, unsigned int, double, double);
+template CrackPath crack_path(const ParticleStore<2> &, unsigned int, double, double,
+                              const Point<2> *);
+template CrackPath crack_path(const ParticleStore<3> &, unsigned int, double, double,
+                              const Point<2> *);
+template CrackBand crack_band(const ParticleStore<2> &, unsigned int, const CrackPath &,
+                              const std::vector<Point<2>> &);
+template CrackBand crack_band(const ParticleStore<3> &, unsigned int, const CrackPath &,
+                              const std::vector<Point<2>> &);
 template double crack_path_length(const ParticleStore<3> &, unsigned int, double, double);
 template void add_crack_energy(const ParticleStore<2> &, unsigned int, double, double,
                                std::map<std::string, double> &);

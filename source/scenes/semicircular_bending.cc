@@ -223,6 +223,10 @@ public:
         top = std::max(top, p.reference_position[i][1]);
     results["softened_ligament_share"] = (top - tip_y) / (cy + radius - tip_y);
     add_crack_energy(p, s, length, fracture_energy, results);
+    // The crack from the notch tip: its band (damage >= 0.5) and what it dissipated.
+    const Point<2> tip(cx - notch_length * std::sin(theta), tip_y);
+    const CrackPath path = crack_path(p, s, length, 0.5, &tip);
+    add_crack_band(crack_band(p, s, path, path.points), results);
   }
 
 private:

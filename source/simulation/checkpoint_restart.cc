@@ -1,6 +1,7 @@
 // Simulation: checkpoints, resuming from them, and the state checksum. Checkpointing
 // touches every part, so it stays with the owner of the parts.
 #include <lme_mpm/base/checkpoint.h>
+#include <lme_mpm/base/format.h>
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/simulation/simulation.h>
 
@@ -123,8 +124,10 @@ void Simulation<dim>::resume_from(const std::string &directory)
                 ExcBadInput("--resume", "no checkpoint '" + file + "' on every rank"));
   checkpoint::read(file, [&](Archive &ar) { serialize(ar); });
   parts.particles.mark_reordered();
-  AssertThrow(t <= clock.end_time() * (1 + 1e-12),
-              ExcBadInput("--resume", "the checkpoint is past this run's end time"));
+  AssertThrow(t < clock.end_time(),
+              ExcBadInput("--resume", "the checkpoint (t = " + format_double(t) +
+                                          " s) is past this run's Time/End time = " +
+                                          format_double(clock.end_time()) + " s"));
   resumed = true;
   stepper.mark_initialised();
 }

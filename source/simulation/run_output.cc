@@ -1,5 +1,6 @@
 #include <lme_mpm/base/format.h>
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/output/run_files.h>
 #include <lme_mpm/simulation/run_output.h>
 
 #include <fstream>
@@ -32,8 +33,8 @@ void RunOutput<dim>::add_columns()
        },
        [this](std::ostream &out, const ParticleStore<dim> &all, double)
        {
+         // Every particle, summed as on one rank (the drift is tracked every step).
          const Energies e = energy.measure(all, parts.materials);
-         energy.record(e, row_step == 0);
          out << ",";
          EnergyBalance<dim>::write_row(out, e);
          results["final_total_energy"]   = e.total();
@@ -55,10 +56,12 @@ void RunOutput<dim>::add_columns()
       {[&p](std::ostream &out) { p.bodies.write_header(out, p.contact.active()); },
        [this](std::ostream &out, const ParticleStore<dim> &all, double)
        {
-         // The contact forces' mean over the interval this row closes.
+         // The contact forces' means over the force window and over the interval
+         // this row closes.
+         contact_means.close_row(parts.contact.step_forces());
          const bool contact = parts.contact.active();
-         contact_means.close_row(parts.contact.step_forces(), contact);
-         parts.bodies.write_row(out, all, contact ? &contact_means.mean() : nullptr);
+         parts.bodies.write_row(out, all, contact ? &contact_means.current() : nullptr,
+                                &contact_means.mean());
        },
        [this](std::map<std::string, double> &r, const ParticleStore<dim> &, double)
        {
@@ -100,7 +103,7 @@ void RunOutput<dim>::parse_parameters(ParameterHandler &prm, const unsigned int 
   if (parts.bodies.any_prescribed())
     energy.set_excluded_bodies(parts.bodies.prescribed_flags());
   peak_force.parse(parts.parameters.peak_force_set, parts.constraints);
-  contact_means.reset(parts.bodies.size());
+  contact_means.reset(parts.bodies.size(), parts.parameters.force_window);
   probes.parse_parameters(prm, n_probes);
   exact.parse_parameters(prm);
   open(parts.parameters.directory);
@@ -134,10 +137,23 @@ SceneState<dim> RunOutput<dim>::scene_state(const double t,
   state.constraints = &parts.constraints;
   if (parts.contact.active())
   {
-    state.contact_forces      = &contact_means.mean();
+    state.contact_forces      = &contact_means.current();
     state.peak_contact_forces = &contact_means.peak();
+    state.contact_force_means = &contact_means.mean();
   }
-  state.time = t;
+  state.time         = t;
+  state.force_window = parts.parameters.force_window;
+  return state;
+}
+
+template <int dim>
+SceneState<dim> RunOutput<dim>::step_state(const double t, const double dt) const
+{
+  SceneState<dim> state     = scene_state(t, parts.particles);
+  state.contact_force_means = nullptr;
+  state.ranks               = &parts.ranks;
+  state.step_length         = dt;
+  state.all_particles = [this]() -> const ParticleStore<dim> & { return observed(); };
   return state;
 }
 
@@ -145,7 +161,8 @@ template <int dim>
 void RunOutput<dim>::prepare(const bool resumed, const TimeStepControl &clock)
 {
   const RunParameters<dim> &run = parts.parameters;
-  exact.compute_norms(observed(), run.end_time, run.output_interval);
+  unsigned int removed          = 0;
+  exact.compute_norms(observed(), run.end_time);
   // Only now, with every input checked, does the run write anything (rank 0 makes
   // the directory the others write their pieces to).
   if (writes_files())
@@ -155,6 +172,9 @@ void RunOutput<dim>::prepare(const bool resumed, const TimeStepControl &clock)
     AssertThrow(!ec,
                 ExcBadInput("Output/Directory",
                             "cannot create '" + output_directory + "': " + ec.message()));
+    // A new run does not write beside another run's files (doc/outputs.md).
+    if (!resumed)
+      removed = remove_earlier_run(output_directory);
   }
   parts.ranks.barrier();
   if (!writes_files())
@@ -177,59 +197,122 @@ void RunOutput<dim>::prepare(const bool resumed, const TimeStepControl &clock)
         << clock.planned_steps() << " steps"
         << (run.particle_travel > 0 ? " (more while particles travel fast)" : "") << ", "
         << parts.transfer.threads() << " thread(s)" << std::endl;
+  if (removed > 0)
+    pcout << "lme-mpm: removed " << removed << " files of an earlier run from '"
+          << output_directory << "'" << std::endl;
 }
 
 template <int dim>
-void RunOutput<dim>::after_step(const double external_work, const double dt)
+void RunOutput<dim>::after_step(const double external_work, const double dt,
+                                const double t)
 {
   energy.add_external_work(external_work);
+  energy.track(energy.measure(parts.particles, parts.materials, parts.ranks), false);
   peak_force.update(parts.constraints);
-  // Every step counts towards the row's mean contact force, with contact or not.
+  // Every step counts towards the contact forces' means, with contact or not.
   contact_means.book(parts.contact.step_forces(), dt);
+  const SceneState<dim> state = step_state(t, dt);
+  parts.scene->observe(state);
+  std::string reason = parts.scene->finished(state);
+  // Every rank ends the run together (a scene judges on reduced values; should one
+  // not, the first rank's words are kept).
+  if (parts.ranks.distributed() && parts.ranks.max(reason.empty() ? 0.0 : 1.0) > 0)
+  {
+    reason = parts.ranks.broadcast(reason);
+    if (reason.empty())
+      reason = "the scene's stop rule";
+  }
+  if (!reason.empty() && scene_stop.empty())
+  {
+    scene_stop = reason;
+    pcout << "Stopped at t = " << t << ": " << reason << std::endl;
+  }
+}
+
+template <int dim>
+double RunOutput<dim>::file_interval(const bool on, const double interval) const
+{
+  if (!on)
+    return std::numeric_limits<double>::max();
+  return interval > 0 ? interval : parts.parameters.output_interval;
 }
 
 template <int dim>
 void RunOutput<dim>::write_first_row(const double t)
 {
-  write_row(0, t);
-  next_time = parts.parameters.output_interval;
+  energy.track(energy.measure(parts.particles, parts.materials, parts.ranks), true);
+  write_final(0, t);
+  const RunParameters<dim> &run = parts.parameters;
+  next_time                     = run.output_interval;
+  next_particle_time = file_interval(run.write_particles, run.particle_interval);
+  next_grid_time     = file_interval(run.write_grid, run.grid_interval);
 }
 
 template <int dim>
 void RunOutput<dim>::write_due_row(const unsigned int step, const double t,
                                    const double dt)
 {
-  write_row(step, t);
+  const RunParameters<dim> &run = parts.parameters;
   // The first output time past this step (an interval below the rounding of t
   // would never move it by addition).
-  const double interval = parts.parameters.output_interval;
-  next_time             = interval * (std::floor((t + 0.5 * dt) / interval) + 1);
+  const auto advance = [&](double &next, const double interval)
+  {
+    if (t < next - 0.5 * dt)
+      return false;
+    next = interval * (std::floor((t + 0.5 * dt) / interval) + 1);
+    return true;
+  };
+  const bool row       = advance(next_time, run.output_interval);
+  const bool particles = advance(
+      next_particle_time, file_interval(run.write_particles, run.particle_interval));
+  const bool grid =
+      advance(next_grid_time, file_interval(run.write_grid, run.grid_interval));
+  write_outputs(step, t, row, particles, grid);
 }
 
 template <int dim>
-void RunOutput<dim>::write_row(const unsigned int step, const double t)
+void RunOutput<dim>::write_final(const unsigned int step, const double t)
 {
-  // A distributed run reads every particle on rank 0, which writes the files.
-  const ParticleStore<dim> &all = observed();
   const RunParameters<dim> &run = parts.parameters;
-  const bool distributed        = parts.ranks.distributed();
-  if (run.write_grid && distributed)
+  const auto missing            = [&](const bool any, const unsigned int last)
+  { return !any || last != step; };
+  write_outputs(step, t, missing(any_row, row_step),
+                run.write_particles && missing(any_particle_file, particle_step),
+                run.write_grid && missing(any_grid_file, grid_step));
+}
+
+template <int dim>
+void RunOutput<dim>::write_outputs(const unsigned int step, const double t,
+                                   const bool row, const bool particles, const bool grid)
+{
+  // A distributed run reads every particle on rank 0, which writes the files; each
+  // rank writes its own particles' piece.
+  const bool distributed = parts.ranks.distributed();
+  if (row)
+    row_step = step, any_row = true;
+  if (particles)
+    particle_step = step, any_particle_file = true;
+  if (grid)
+    grid_step = step, any_grid_file = true;
+  if (grid && distributed)
     write_grid_file(t);
-  // Each rank writes its own particles.
-  if (run.write_particles && distributed)
+  if (particles && distributed)
     particle_output->write_piece(parts.particles, t, parts.ranks.rank(),
                                  parts.ranks.n_ranks());
+  const ParticleStore<dim> *all = row ? &observed() : nullptr;
   if (!writes_files())
     return;
-  row_step = step;
-  std::ostringstream row;
-  row << std::setprecision(10) << step << "," << t;
-  for (const auto &c : columns)
-    c.row(row, all, t);
-  history.write_row(row.str());
-  if (run.write_particles && !distributed)
+  if (row)
+  {
+    std::ostringstream text;
+    text << std::setprecision(10) << step << "," << t;
+    for (const auto &c : columns)
+      c.row(text, *all, t);
+    history.write_row(text.str());
+  }
+  if (particles && !distributed)
     particle_output->write(parts.particles, t);
-  if (run.write_grid && !distributed)
+  if (grid && !distributed)
     grid_output->write(parts.grid, parts.transfer.nodes().mass,
                        parts.transfer.nodes().rate, t);
 }
@@ -261,19 +344,6 @@ void RunOutput<dim>::write_grid_file(const double t)
 }
 
 template <int dim>
-std::string RunOutput<dim>::scene_finished(const double t)
-{
-  const std::string reason = parts.ranks.broadcast(
-      writes_files() ? parts.scene->finished(scene_state(t, last_observed())) : "");
-  if (!reason.empty())
-  {
-    scene_stop = reason;
-    pcout << "Stopped at t = " << t << ": " << reason << std::endl;
-  }
-  return reason;
-}
-
-template <int dim>
 std::map<std::string, double> RunOutput<dim>::energies() const
 {
   return energy.measure(observed(), parts.materials).as_map();
@@ -301,6 +371,8 @@ RunSummary RunOutput<dim>::summarise(const double wall, const unsigned int steps
   results["travel_limited_steps"]      = clock.limited_steps();
   results["particle_steps_per_second"] = n_particles * double(steps) / wall;
   results["max_energy_drift"]          = energy.max_drift();
+  results["max_energy_drift_absolute"] = energy.max_absolute_drift();
+  results["energy_scale"]              = energy.scale();
   stages.add_results(results);
   for (const auto &c : columns)
     if (c.results)
@@ -393,7 +465,8 @@ template <int dim>
 void RunOutput<dim>::serialize(Archive &ar)
 {
   energy.serialize(ar);
-  ar(next_time);
+  ar(next_time, next_particle_time, next_grid_time);
+  ar(row_step, particle_step, grid_step, any_row, any_particle_file, any_grid_file);
   peak_force.serialize(ar);
   contact_means.serialize(ar);
   AssertThrow(contact_means.peak().size() == parts.bodies.size(),

@@ -56,6 +56,9 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
   setup_bodies_and_contact(prm, counts);
   if (parts.parameters.output_interval <= 0)
     parts.parameters.output_interval = parts.parameters.end_time / 20;
+  if (parts.parameters.force_window <= 0)
+    parts.parameters.force_window =
+        10 * parts.grid.min_spacing() / parts.materials.max_wave_speed();
   output.parse_parameters(prm, counts.probes);
   double min_mass = std::numeric_limits<double>::max();
   for (const double m : parts.particles.mass)
@@ -231,13 +234,14 @@ void Simulation<dim>::distribute()
 template <int dim>
 void Simulation<dim>::step()
 {
-  dt = clock.next(t, max_speed);
+  dt = clock.next(t, step_count, max_speed);
   stepper.set_time_step(dt);
   const StepResult result = stepper.advance(t, step_count);
-  t += dt;
+  // The last step lands on the end time to the bit.
+  t = clock.at_end() ? clock.end_time() : t + dt;
   ++step_count;
   max_speed = result.max_speed;
-  output.after_step(result.external_work, dt);
+  output.after_step(result.external_work, dt, t);
   guard.stop_if_unstable(result.first_bad, step_count, t);
   stepper.exchange_particles();
 }
@@ -253,32 +257,46 @@ void Simulation<dim>::advance_to_end(TimerOutput &timer,
   }
   auto last_checkpoint            = std::chrono::steady_clock::now();
   const unsigned int report_every = std::max(1u, clock.planned_steps() / 10);
-  while (!clock.finished(t, step_count))
+  while (true)
   {
+    // Before the last step, which alone is shortened to land on the end time, a run
+    // with checkpoints keeps one: extended from it to a later end time, the run takes
+    // the steps of one run to that time.
+    if (checkpoints_on() && clock.last_step(t, step_count, max_speed))
+    {
+      TimerOutput::Scope scope(timer, "checkpoint");
+      write_checkpoint();
+    }
     {
       TimerOutput::Scope scope(timer, "time step");
       step();
     }
-    if (output.due(t, dt) || clock.finished(t, step_count))
+    const bool last = clock.finished(t, step_count) || output.stopping();
+    if (output.due(t, dt))
     {
       TimerOutput::Scope scope(timer, "output");
       output.write_due_row(step_count, t, dt);
       guard.stop_if_energy_runs_away(output.energy_drift(), clock.limited_steps(),
                                      step_count, t);
-      if (!output.scene_finished(t).empty())
-        break;
     }
-    if (checkpoint_due(last_checkpoint) && !clock.finished(t, step_count))
+    if (last)
+    {
+      TimerOutput::Scope scope(timer, "output");
+      output.write_final(step_count, t);
+      output.report_progress(start, step_count, 1.0, t);
+      return;
+    }
+    if (checkpoint_due(last_checkpoint))
     {
       TimerOutput::Scope scope(timer, "checkpoint");
       write_checkpoint();
       last_checkpoint = std::chrono::steady_clock::now();
     }
-    if (step_count % report_every == 0 || clock.finished(t, step_count))
-      output.report_progress(start, step_count, t / clock.end_time(), t);
+    if (step_count % report_every == 0)
+      output.report_progress(start, step_count, std::min(1.0, t / clock.end_time()), t);
     guard.stop_if_interrupted(step_count, t);
     const unsigned int max_steps = parts.parameters.max_steps;
-    if (max_steps > 0 && step_count >= max_steps && !clock.finished(t, step_count))
+    if (max_steps > 0 && step_count >= max_steps)
       AssertThrow(false, ExcStepLimit(step_count, t));
   }
 }
@@ -303,10 +321,11 @@ std::string Simulation<dim>::end_failed_run(const std::exception &e)
           << message;
     message = where.str();
   }
-  // Keep what the run produced: one last row and particle file at the failure.
+  // Keep what the run produced: one last row and particle file at the failure
+  // (unless this step's are written already).
   try
   {
-    output.write_row(step_count, t);
+    output.write_final(step_count, t);
   }
   catch (...)
   {
@@ -341,15 +360,15 @@ std::map<std::string, double> Simulation<dim>::run()
   {
     // The step is complete: keep its row and, where checkpoints are on, a checkpoint
     // of it to go on from.
-    status  = "interrupted";
-    message = end_failed_run(e);
-    if (parts.parameters.checkpoint_every_steps > 0 ||
-        parts.parameters.checkpoint_every_seconds > 0)
-    {
+    status = "interrupted";
+    // The checkpoint before the row end_failed_run() adds: a resumed run cuts that
+    // row, and its history is the uninterrupted run's.
+    if (checkpoints_on())
       write_checkpoint();
-      message += "; checkpoint written: continue with --resume " + output.directory() +
-                 " (and the same parameter file and --set values)";
-    }
+    message = end_failed_run(e);
+    if (checkpoints_on())
+      message +=
+          "; checkpoint written: continue with lme-mpm --resume " + output.directory();
     else
       message += "; no checkpoint (Checkpoint/Every steps and Every seconds are 0): "
                  "the run cannot be continued";

@@ -186,7 +186,10 @@ void GridTransfer<dim>::forces(const std::size_t b, const std::size_t e,
     const std::size_t o = p * conn.stride;
     // A full tensor: the symmetric one's element access costs more per node.
     const Tensor<2, dim> s =
-        (stress_factor(particles, p) * particles.initial_volume[p]) * particles.stress[p];
+        has_crack_normal(particles, p)
+            ? Tensor<2, dim>(particles.initial_volume[p] * effective_stress(particles, p))
+            : Tensor<2, dim>((stress_factor(particles, p) * particles.initial_volume[p]) *
+                             particles.stress[p]);
     const unsigned int n = conn.n_nodes[p];
     if (gravity)
     {

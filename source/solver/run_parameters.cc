@@ -117,15 +117,31 @@ void RunParameters<dim>::entries(EntryList &list)
   list.add("Directory", directory, "output", Patterns::Anything(),
            "Directory for VTU/PVD files, history.csv and summary.json.");
   list.add("Output interval", output_interval, "0", Patterns::Double(0),
-           "Simulated time between output rows and files (s); 0: 20 per run.");
+           "Simulated time between history.csv rows (s), and between particle and "
+           "grid files unless their own intervals are given; 0: 20 per run. Results "
+           "in summary.json do not depend on it: peaks, their times, stop rules and "
+           "the energy drift are checked every step.");
+  list.add("Particle file interval", particle_interval, "0", Patterns::Double(0),
+           "Simulated time between particle files (s); 0: the Output interval.");
+  list.add("Grid file interval", grid_interval, "0", Patterns::Double(0),
+           "Simulated time between grid files (s); 0: the Output interval.");
+  list.add("Force window", force_window, "0", Patterns::Double(0),
+           "The contact forces (and the loads scenes derive from them) are judged by "
+           "their mean over this much simulated time before each step (s), updated "
+           "every step (nothing acts before t = 0): a single step's force chatters as "
+           "particles cross cells, and an impact's first step is one impulse. "
+           "0: ten times the time a P-wave takes to cross the smallest cell, 10 "
+           "h_min / c_P. A window shorter than the time step keeps each step's own "
+           "force.");
   list.add("Write particle files", write_particles, "true", Patterns::Bool(),
            "Write particle VTU files (history.csv and summary.json always).");
   list.add("Write grid files", write_grid, "false", Patterns::Bool(),
            "Also write the background grid with nodal velocity and mass.");
   list.add("Peak force set", peak_force_set, "", Patterns::Anything(),
            "Name of a constrained node set and a component, 'top:y': summary.json "
-           "then reports peak_force (largest reaction, checked every step) and "
-           "displacement_at_peak (the set's imposed displacement then).");
+           "then reports peak_force (the reaction of largest magnitude along that "
+           "component, checked every step, with its sign) and displacement_at_peak "
+           "(the set's imposed displacement then).");
   list.add("Verbosity", verbosity, "1", Patterns::Integer(0, 2),
            "0: errors only; 1: progress and timing; 2: more.");
   list.leave();
@@ -223,8 +239,9 @@ TimeStepping stable_time_step(const RunParameters<dim> &run, const double h_min,
                 ExcBadInput(wave_speed_entries + " (with Time/CFL or Time/Time step)",
                             msg.str()));
   }
-  // Land exactly on the end time, in at least one step; the count is checked as a
-  // double, before it is converted.
+  // The step does not depend on the end time, so that a run can be extended: it ends
+  // with the first whole step at or past the end time (in at least one step). The
+  // count is checked as a double, before it is converted.
   const double steps = std::max(1.0, std::ceil(run.end_time / ts.dt - 1e-9));
   {
     std::ostringstream msg;
@@ -237,7 +254,6 @@ TimeStepping stable_time_step(const RunParameters<dim> &run, const double h_min,
                 ExcBadInput(wave_speed_entries + " (with Time/End time)", msg.str()));
   }
   ts.n_steps = static_cast<unsigned int>(steps);
-  ts.dt      = run.end_time / ts.n_steps;
   return ts;
 }
 

@@ -13,7 +13,9 @@
 namespace
 {
 using lme_mpm_test::checksum;
+using lme_mpm_test::expect_same_run;
 using lme_mpm_test::file_text;
+using lme_mpm_test::run_and_resume;
 using lme_mpm_test::with_settings;
 
 /// Runs @p prm with @p settings to its end in @p dir; returns the run's results.
@@ -25,29 +27,6 @@ std::map<std::string, double> run(const std::string &prm,
   return lme_mpm::run_parameter_file(prm, with_settings(settings, {}, dir), quiet);
 }
 
-/**
- * Runs @p prm with @p overrides (which write checkpoints into @p dir) to its end,
- * lets @p edit change the last checkpoint, and resumes from it in @p dir.
- */
-void run_and_resume(const std::string &prm, const std::vector<std::string> &overrides,
-                    const std::string &dir,
-                    const std::function<void(const std::string &)> &edit = {})
-{
-  std::ostringstream quiet;
-  lme_mpm::run_parameter_file(prm, overrides, quiet);
-  ASSERT_TRUE(std::filesystem::exists(dir + "/checkpoint.bin"));
-  if (edit)
-    edit(dir + "/checkpoint.bin");
-  lme_mpm::run_parameter_file(prm, overrides, quiet, dir);
-}
-
-/// The run in @p b ended in the state of the one in @p a, and wrote the same history.
-void expect_same_run(const std::string &a, const std::string &b)
-{
-  EXPECT_FALSE(checksum(a).empty());
-  EXPECT_EQ(checksum(a), checksum(b));
-  EXPECT_EQ(file_text(a + "/history.csv"), file_text(b + "/history.csv"));
-}
 } // namespace
 
 TEST(Checkpoint, ResumedRunEndsBitwiseIdentical)
@@ -180,5 +159,52 @@ TEST(Checkpoint, TooNarrowSlabsAreRedone)
     run_and_resume(prm, with_settings(scene, {"Checkpoint/Every steps=100"}, b), b,
                    cut_reach);
     expect_same_run(a, b);
+  }
+}
+
+TEST(Checkpoint, FinishedRunExtendedToALaterEndTimeIsOneRunToThatTime)
+{
+  // The time step does not depend on Time/End time, and a finished run keeps a
+  // checkpoint of its last step: resumed with a later end time it takes the steps,
+  // and writes the rows, of one run to the later time.
+  const std::vector<std::string> scene = {"Output/Verbosity=0",
+                                          "Output/Output interval=1e-4",
+                                          "Output/Write particle files=false"};
+  const std::string prm                = lme_mpm_test::scene("tension_bar.prm");
+  const std::string a                  = lme_mpm_test::scratch("extend_a"),
+                    b                  = lme_mpm_test::scratch("extend_b");
+  std::ostringstream quiet;
+  const auto whole = lme_mpm::run_parameter_file(
+      prm, with_settings(scene, {"Time/End time=1.95e-3"}, a), quiet);
+  EXPECT_GT(whole.at("dissipated_energy"), 0); // the extension spans the fracture
+  const auto first = lme_mpm::run_parameter_file(
+      prm,
+      with_settings(scene, {"Time/End time=0.77e-3", "Checkpoint/Every steps=100000"}, b),
+      quiet);
+  EXPECT_EQ(first.at("time_step"), whole.at("time_step"));
+  ASSERT_TRUE(std::filesystem::exists(b + "/checkpoint.bin"));
+  // Resuming it unchanged repeats its end; a later end time extends it.
+  const auto again = lme_mpm::run_parameter_file(
+      prm,
+      with_settings(scene, {"Time/End time=0.77e-3", "Checkpoint/Every steps=100000"}, b),
+      quiet, b);
+  EXPECT_EQ(again.at("steps"), first.at("steps"));
+  const auto extended = lme_mpm::run_parameter_file(
+      prm,
+      with_settings(scene, {"Time/End time=1.95e-3", "Checkpoint/Every steps=100000"}, b),
+      quiet, b);
+  EXPECT_EQ(extended.at("steps"), whole.at("steps"));
+  expect_same_run(a, b);
+  // An end time before the checkpoint's is refused, naming it.
+  try
+  {
+    lme_mpm::run_parameter_file(prm, with_settings(scene, {"Time/End time=0.5e-3"}, b),
+                                quiet, b);
+    ADD_FAILURE() << "resumed past the end time";
+  }
+  catch (const std::exception &e)
+  {
+    EXPECT_NE(lme_mpm::input::concise_message(e).find("Time/End time"), std::string::npos)
+        << lme_mpm::input::concise_message(e);
   }
 }

@@ -7,6 +7,7 @@
 
 #include "test_helpers.h"
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
@@ -75,44 +76,24 @@ TEST(RunRecord, VersionAndParametersOfAFile)
   EXPECT_NE(text.find("= rectangle(0, 0, 1, 0.1)"), std::string::npos);
 }
 
-TEST(RunRecord, InterruptedRunSaysSoAndResumes)
+TEST(RunRecord, InterruptedRunSaysSoAndResumesToTheSameHistory)
 {
-  // A run long enough to be interrupted: SIGINT once history.csv has rows.
-  const std::string out = lme_mpm_test::scratch("interrupt");
-  const std::string log = lme_mpm_test::scratch_path("interrupt.log");
-  // About 50,000 steps, a few seconds on one thread.
+  // A run long enough to be interrupted: SIGINT once history.csv has rows. About
+  // 17,000 steps, a second on one thread.
+  const std::string out               = lme_mpm_test::scratch("interrupt");
+  const std::string ref               = lme_mpm_test::scratch("interrupt_reference");
+  const std::string log               = lme_mpm_test::scratch_path("interrupt.log");
   const std::vector<std::string> sets = {
-      "Time/End time=1.2", "Output/Output interval=0.01",
-      "Output/Write particle files=false", "Checkpoint/Every steps=1000000",
-      "Output/Directory=" + out};
-  const pid_t pid = fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0)
+      "Time/End time=0.4", "Output/Output interval=0.01",
+      "Output/Write particle files=false", "Checkpoint/Every steps=1000000"};
+  auto in = [&](const std::string &dir)
   {
-    if (!std::freopen(log.c_str(), "w", stdout) ||
-        !std::freopen(log.c_str(), "a", stderr))
-      _exit(99);
-    std::vector<std::string> args = {LME_MPM_BINARY, bar(), "--threads", "1"};
-    for (const auto &s : sets)
-      args.push_back("--set"), args.push_back(s);
-    std::vector<char *> argv;
-    for (auto &a : args)
-      argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(argv[0], argv.data());
-    _exit(98);
-  }
-  const auto rows = [&]()
-  {
-    return std::filesystem::exists(out + "/history.csv") &&
-           lme_mpm_test::read_history(out).second.size() >= 3;
+    auto s = sets;
+    s.push_back("Output/Directory=" + dir);
+    return s;
   };
-  for (int i = 0; i < 600 && !rows(); ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  ASSERT_TRUE(rows());
-  kill(pid, SIGINT);
-  int status = 0;
-  waitpid(pid, &status, 0);
+  const int status =
+      lme_mpm_test::run_and_signal(bar(), in(out), out, log, SIGINT, 3, false);
   ASSERT_TRUE(WIFEXITED(status)) << lme_mpm_test::file_text(log);
   EXPECT_EQ(WEXITSTATUS(status), 128 + SIGINT);
   const auto s = summary(out);
@@ -123,10 +104,15 @@ TEST(RunRecord, InterruptedRunSaysSoAndResumes)
   EXPECT_NE(lme_mpm_test::file_text(log).find("Interrupted by SIGINT"),
             std::string::npos);
   ASSERT_TRUE(std::filesystem::exists(out + "/checkpoint.bin"));
-  // It continues from there to the end.
-  std::string args = bar() + " --threads 1 --resume " + out;
-  for (const auto &s2 : sets)
-    args += " --set \"" + s2 + "\"";
-  EXPECT_EQ(run(args, log), 0) << lme_mpm_test::file_text(log);
+  // It continues from there to the end with the parameters it recorded, the
+  // directory alone on the command line (the interrupted step's extra row goes).
+  EXPECT_EQ(run("--threads 1 --resume " + out, log), 0) << lme_mpm_test::file_text(log);
   EXPECT_EQ(summary(out)["status"], "completed");
+  std::string args = bar() + " --threads 1";
+  for (const auto &s2 : in(ref))
+    args += " --set \"" + s2 + "\"";
+  ASSERT_EQ(run(args, log), 0) << lme_mpm_test::file_text(log);
+  EXPECT_EQ(summary(out)["state_checksum"], summary(ref)["state_checksum"]);
+  EXPECT_EQ(lme_mpm_test::file_text(out + "/history.csv"),
+            lme_mpm_test::file_text(ref + "/history.csv"));
 }

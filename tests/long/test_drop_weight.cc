@@ -24,9 +24,10 @@ TEST(DropWeight, ImpactForceIsTheHammersMomentumRateAndTheSupportsWaitForTheWave
   const auto h          = lme_mpm_test::read_history(lme_mpm_test::scratch_path(tag));
   const auto col        = [&](const std::string &name)
   { return lme_mpm_test::column(h.first, name); };
-  const std::size_t t = col("time"), impact = col("impact_force"),
-                    rate = col("hammer_momentum_rate"), reaction = col("reaction_force"),
-                    kinetic = col("kinetic_energy");
+  const std::size_t t = col("time"), impact = col("impact_force_mean"),
+                    rate     = col("hammer_momentum_rate_mean"),
+                    reaction = col("reaction_force_mean"),
+                    kinetic  = col("kinetic_energy");
   // The hammer's mass per thickness times the thickness is 120.6 kg (its density comes
   // from the scene): at t = 0 only it moves.
   EXPECT_NEAR(h.second.front()[kinetic], 0.5 * 120.6 * 2.64 * 2.64, 1e-9 * 420);
@@ -84,9 +85,10 @@ TEST(DropWeight, SingleFieldSupportsTakeWhatTheBeamAndHammerLose)
     const auto h   = lme_mpm_test::read_history(lme_mpm_test::scratch_path(tag));
     const auto col = [&](const std::string &name)
     { return lme_mpm_test::column(h.first, name); };
-    const std::size_t t = col("time"), impact = col("impact_force"),
-                      hammer = col("hammer_momentum_rate"),
-                      beam = col("beam_momentum_rate"), reaction = col("reaction_force");
+    const std::size_t t = col("time"), impact = col("impact_force_mean"),
+                      hammer   = col("hammer_momentum_rate_mean"),
+                      beam     = col("beam_momentum_rate_mean"),
+                      reaction = col("reaction_force_mean");
     double support = 0, worst = 0, early = 0;
     for (std::size_t i = 1; i < h.second.size(); ++i)
     {
@@ -119,9 +121,9 @@ TEST(DropWeight, SingleFieldSupportsTakeWhatTheBeamAndHammerLose)
 
 TEST(DropWeight, ResumedRunReportsWhatTheUninterruptedOneDoes)
 {
-  // The scene's peaks and the hammer's momentum rate come from its history rows; a
-  // checkpoint keeps what the rows have seen, so a run resumed from step 200 of 246
-  // writes the same history and the same peaks as the run without the break.
+  // The scene tracks its peaks after every step and its interval means in its rows;
+  // a checkpoint keeps both, so a run resumed from step 200 writes the same history
+  // and the same peaks as the run without the break.
   std::ostringstream quiet;
   const std::string prm = lme_mpm_test::scene("drop_weight.prm");
   std::map<std::string, double> results[2];

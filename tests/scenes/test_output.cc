@@ -6,12 +6,14 @@
 #include <lme_mpm/grid/background_grid.h>
 #include <lme_mpm/output/particle_output.h>
 #include <lme_mpm/output/probes.h>
+#include <lme_mpm/output/run_files.h>
 #include <lme_mpm/particles/particle_store.h>
 
 #include "test_helpers.h"
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <random>
 
 using namespace lme_mpm;
@@ -89,4 +91,79 @@ TEST(Output, ProbesReportTheEffectiveStress)
   for (const char *field : {"stress_xx", "undamaged_stress_xx", "max_principal_stress"})
     EXPECT_NE(vtu.find(std::string("Name=\"") + field + "\""), std::string::npos)
         << field;
+}
+
+TEST(Output, PeakForceOfAPushingSetIsItsLargestMagnitudeWithItsSign)
+{
+  // The tension bar's right grip pushed in: its reaction on the bar is negative, and
+  // the peak load is the most negative reaction, checked every step.
+  const auto r = lme_mpm_test::run_scene(
+      "tension_bar.prm", "push",
+      {"Material 1/Fracture/Model=none", "Material 2/Fracture/Model=none",
+       "Time/End time=1e-3", "Output/Peak force set=right:x",
+       "Boundary conditions/Constraint 2/Velocity/Function expression="
+       "if(t < tr, -v0*0.5*(1 - cos(pi*t/tr)), -v0); 0"});
+  const auto h        = lme_mpm_test::read_history(lme_mpm_test::scratch_path("push"));
+  const std::size_t f = lme_mpm_test::column(h.first, "force_right_x"),
+                    u = lme_mpm_test::column(h.first, "displacement_right_x");
+  double most         = 0;
+  for (const auto &row : h.second)
+    most = std::min(most, row[f]);
+  ASSERT_LT(most, -10); // tens of newtons in compression
+  EXPECT_LT(r.at("peak_force"), 0);
+  // Every step is checked, the rows sample them (to 10 digits): at least the rows'
+  // largest.
+  EXPECT_LE(r.at("peak_force"), most * (1 - 1e-9));
+  EXPECT_GT(r.at("peak_force"), 1.2 * most);
+  EXPECT_LT(r.at("displacement_at_peak"), 0.5 * h.second.back()[u]);
+}
+
+TEST(Output, ANewRunRemovesAnEarlierRunsFilesFromItsDirectory)
+{
+  // A long run with many particle files, then a short one into the same directory:
+  // no particle file is left that the new series does not list, and a file of the
+  // user's own stays.
+  const std::string dir                = lme_mpm_test::scratch_path("reuse");
+  const std::vector<std::string> files = {"Output/Write particle files=true",
+                                          "Output/Output interval=1e-6"};
+  auto with                            = [&](const std::string &end)
+  {
+    auto o = files;
+    o.push_back("Time/End time=" + end);
+    return o;
+  };
+  lme_mpm_test::run_scene("tension_bar.prm", "reuse", with("3e-5"));
+  const auto count = [&](const std::string &suffix)
+  {
+    unsigned int n = 0;
+    for (const auto &e : std::filesystem::directory_iterator(dir))
+    {
+      const std::string name = e.path().filename().string();
+      n += name.size() > suffix.size() &&
+           name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+    }
+    return n;
+  };
+  ASSERT_GE(count(".vtu"), 30u);
+  std::ofstream(dir + "/notes.txt") << "mine";
+  // run_scene() clears the directory itself: run into it directly.
+  std::ostringstream console;
+  auto o = with("5e-6");
+  o.push_back("Output/Directory=" + dir);
+  lme_mpm::run_parameter_file(lme_mpm_test::scene("tension_bar.prm"), o, console);
+  const std::string pvd = lme_mpm_test::file_text(dir + "/particles.pvd");
+  unsigned int listed   = 0;
+  for (auto at = pvd.find("file=\""); at != std::string::npos;
+       at      = pvd.find("file=\"", at + 1))
+    ++listed;
+  EXPECT_GE(listed, 5u);
+  EXPECT_EQ(count(".vtu"), listed);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/notes.txt"));
+  EXPECT_NE(console.str().find("files of an earlier run"), std::string::npos)
+      << console.str();
+  EXPECT_TRUE(is_run_file("particles_00012.vtu"));
+  EXPECT_TRUE(is_run_file("particles_00012.3.vtu"));
+  EXPECT_TRUE(is_run_file("checkpoint.1.bin.prev"));
+  EXPECT_FALSE(is_run_file("particles_final.vtu"));
+  EXPECT_FALSE(is_run_file("notes.txt"));
 }

@@ -23,7 +23,8 @@ std::vector<std::string> coarse(const std::string &angle)
 TEST(SemicircularBending, SupportsBalanceTheLoadBeforeThePeak)
 {
   // Quasi-static elastic loading: at every history row past the ramp the supports'
-  // vertical forces sum to the load within 2 % of the load.
+  // vertical forces sum to the load within 2 % of the load, as means over the rows'
+  // intervals (the impulses balance; a shorter mean sees the specimen vibrate).
   const std::string tag = "scb_coarse_balance";
   auto o                = coarse("30");
   o.push_back("Material 1/Fracture/Model=none");
@@ -31,12 +32,12 @@ TEST(SemicircularBending, SupportsBalanceTheLoadBeforeThePeak)
   const auto h   = lme_mpm_test::read_history(lme_mpm_test::scratch_path(tag));
   const auto col = [&](const std::string &name)
   { return lme_mpm_test::column(h.first, name); };
-  const auto load = col("force_load_y"), left = col("force_left_y"),
-             right  = col("force_right_y");
+  const auto load = col("force_load_mean_y"), left = col("force_left_mean_y"),
+             right  = col("force_right_mean_y");
   unsigned int rows = 0;
   double worst      = 0;
   for (const auto &row : h.second)
-    if (row[1] > 2e-3 && row[load] > 0)
+    if (row[1] > 2.1e-3 && row[load] > 0) // past the ramp and its first transient
     {
       worst = std::max(worst, std::abs(row[load] + row[left] + row[right]) / row[load]);
       ++rows;

@@ -5,8 +5,11 @@
 
 #include <lme_mpm/contact/body_contact.h>
 #include <lme_mpm/output/force_means.h>
+#include <lme_mpm/output/moving_mean.h>
 
+#include <cmath>
 #include <memory>
+#include <sstream>
 
 using namespace lme_mpm;
 
@@ -205,22 +208,62 @@ TEST(BodyContact, ProjectedExchangeSweepsUntilTheRatesStopApproaching)
   EXPECT_LT(after_again, 1e-8);
 }
 
-TEST(ForceMeans, RowMeanIsTheImpulseOverTheIntervalAndPeaksAreKept)
+TEST(ForceMeans, RowMeanIsTheImpulseOverTheIntervalAndTheWindowMeanIsTrackedEveryStep)
 {
   ForceMeans<2> means;
-  means.reset(2);
+  means.reset(2, 0.35); // a window of 0.35 s
   const std::vector<Tensor<1, 2>> a = {Tensor<1, 2>({2, 0}), Tensor<1, 2>({-2, 0})};
   const std::vector<Tensor<1, 2>> b = {Tensor<1, 2>({4, 0}), Tensor<1, 2>({-4, 0})};
   // A first row with no step behind it reports the step's force.
-  means.close_row(a, true);
+  means.close_row(a);
   EXPECT_EQ(means.mean()[0][0], 2.0);
   means.book(a, 0.1);
-  means.book(b, 0.3);
-  means.close_row(b, true);
+  // The window reaches back before the first step, where nothing acted.
+  EXPECT_NEAR(means.current()[0][0], 2.0 * 0.1 / 0.35, 1e-14);
+  means.book(b, 0.3); // the window now spans both steps (0.4 s >= 0.35 s)
+  EXPECT_NEAR(means.current()[0][0], (0.2 + 1.2) / 0.4, 1e-14);
+  means.close_row(b);
   EXPECT_NEAR(means.mean()[0][0], (0.2 + 1.2) / 0.4, 1e-14);
-  EXPECT_NEAR(means.peak()[1], 3.5, 1e-14);
+  means.book(b, 0.1); // the first step drops out: 0.4 s of b alone
+  EXPECT_NEAR(means.current()[1][0], -4.0, 1e-14);
+  EXPECT_NEAR(means.peak()[1], 4.0, 1e-14);
   means.book(a, 0.1);
-  means.close_row(a, true);
-  EXPECT_NEAR(means.mean()[0][0], 2.0, 1e-14);
-  EXPECT_NEAR(means.peak()[0], 3.5, 1e-14); // the peak stays
+  means.close_row(a);
+  EXPECT_NEAR(means.mean()[0][0], 3.0, 1e-14); // the row's interval: 0.1 b, 0.1 a
+  EXPECT_NEAR(means.current()[0][0], (0.4 * 4 + 0.1 * 2) / 0.5, 1e-14);
+  EXPECT_NEAR(means.peak()[0], 4.0, 1e-14); // the peak stays
+}
+
+TEST(MovingMean, WindowOfZeroKeepsTheLastStepAndRestoresExactly)
+{
+  MovingMean last;
+  last.reset(1, 0);
+  for (const double v : {1.0, 5.0, -2.0})
+  {
+    last.book(&v, 1e-3);
+    EXPECT_EQ(last.mean(0), v);
+  }
+  // A long window over many steps: the mean is summed afresh each step, and a copy
+  // through an archive goes on with the same bits.
+  MovingMean long_window, copy;
+  long_window.reset(2, 1e-3);
+  std::stringstream bytes;
+  for (int step = 0; step < 1000; ++step)
+  {
+    const std::vector<double> v = {std::sin(0.1 * step), double(step)};
+    long_window.book(v, 7e-5);
+    if (step == 500)
+    {
+      Archive out(static_cast<std::ostream &>(bytes));
+      long_window.serialize(out);
+      Archive in(static_cast<std::istream &>(bytes));
+      copy.serialize(in);
+    }
+    if (step > 500)
+      copy.book(v, 7e-5);
+  }
+  EXPECT_EQ(copy.mean(0), long_window.mean(0));
+  EXPECT_EQ(copy.mean(1), long_window.mean(1));
+  // 15 steps of 7e-5 s span the 1e-3 s window: the mean of steps 985 to 999.
+  EXPECT_NEAR(long_window.mean(1), 992.0, 1e-9);
 }

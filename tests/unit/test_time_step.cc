@@ -1,5 +1,6 @@
-// The stable time step: CFL times h_min / c_P, landing exactly on the end time, and
-// clear errors naming the entry when it cannot.
+// The stable time step: CFL times h_min / c_P whatever the end time (so that a run
+// can be extended), only the last step shortened to land on the end time, and clear
+// errors naming the entry when it cannot.
 #include <gtest/gtest.h>
 
 #include <lme_mpm/base/input.h>
@@ -26,18 +27,22 @@ std::string error_of(const RunParameters<2> &run, const double h, const double c
 }
 } // namespace
 
-TEST(StableTimeStep, CflStepThatLandsOnTheEndTime)
+TEST(StableTimeStep, CflStepDoesNotDependOnTheEndTime)
 {
   RunParameters<2> run;
   run.cfl        = 0.3;
-  run.end_time   = 1e-3;
-  const double h = 0.01, c = 2900; // 966.7 CFL steps to the end time
-  const TimeStepping ts = stable_time_step(run, h, c);
-  // At most the CFL step, and n steps of it make the end time.
-  EXPECT_LE(ts.dt, 0.3 * h / c * (1 + 1e-12));
-  EXPECT_GT(ts.dt, 0.3 * h / c * (1 - 1.0 / ts.n_steps));
-  EXPECT_EQ(ts.n_steps, 967u);
-  EXPECT_NEAR(ts.dt * ts.n_steps, run.end_time, 1e-15);
+  const double h = 0.01, c = 2900; // 966.7 CFL steps to 1e-3 s
+  for (const double end : {1e-3, 0.3e-3, 1.8e-3})
+  {
+    run.end_time          = end;
+    const TimeStepping ts = stable_time_step(run, h, c);
+    EXPECT_EQ(ts.dt, 0.3 * h / c);
+    // The steps that reach the end time, the last of them shortened.
+    EXPECT_GE(ts.dt * ts.n_steps, end * (1 - 1e-12));
+    EXPECT_LT(ts.dt * (ts.n_steps - 1), end);
+  }
+  run.end_time = 1e-3;
+  EXPECT_EQ(stable_time_step(run, h, c).n_steps, 967u);
 }
 
 TEST(StableTimeStep, FixedStepWithinTheLimitIsKept)
@@ -67,11 +72,11 @@ TEST(StableTimeStep, EveryImpossibleStepNamesItsEntry)
             std::string::npos);
 }
 
-TEST(TimeStepControl, SlowParticlesTakeExactlyTheWaveSteps)
+TEST(TimeStepControl, SlowParticlesTakeTheWaveStepsAndTheLastLandsOnTheEnd)
 {
   TimeStepping wave;
-  wave.dt      = 1e-3 / 967;
-  wave.n_steps = 967;
+  wave.dt      = 1e-6 / 0.9675; // 967.5 steps to 1e-3 s
+  wave.n_steps = 968;
   TimeStepControl clock;
   clock.set_up(wave, 1e-3, 0.01, 0.01);
   // 1 m/s moves 1e-6 m per step, far below 0.01 of a 1 cm cell.
@@ -79,12 +84,18 @@ TEST(TimeStepControl, SlowParticlesTakeExactlyTheWaveSteps)
   unsigned int n = 0;
   while (!clock.finished(t, n))
   {
-    EXPECT_EQ(clock.next(t, 1.0), wave.dt);
-    t += wave.dt;
+    const bool last = clock.last_step(t, n, 1.0);
+    const double dt = clock.next(t, n, 1.0);
+    EXPECT_EQ(last, n == 967u);
+    if (!last)
+      EXPECT_EQ(dt, wave.dt);
+    t = clock.at_end() ? 1e-3 : t + dt;
     ++n;
   }
-  EXPECT_EQ(n, 967u);
+  EXPECT_EQ(n, 968u);
+  EXPECT_EQ(t, 1e-3);
   EXPECT_EQ(clock.limited_steps(), 0u);
+  EXPECT_EQ(clock.smallest_step(), wave.dt);
 }
 
 TEST(TimeStepControl, FastParticlesTravelAtMostTheLimitAndLandOnTheEnd)
@@ -93,31 +104,31 @@ TEST(TimeStepControl, FastParticlesTravelAtMostTheLimitAndLandOnTheEnd)
   wave.dt      = 1e-4;
   wave.n_steps = 100;
   TimeStepControl clock;
-  const double h = 0.01, travel = 0.01, end = 1e-2;
+  const double h = 0.01, travel = 0.01, end = 1.01e-2;
   clock.set_up(wave, end, travel, h);
   // At 3 m/s the limit is 0.01 * 0.01 / 3 = 3.33e-5 s, a third of the wave step.
   double t       = 0;
   unsigned int n = 0;
-  double last    = 0;
   while (!clock.finished(t, n) && n < 1000)
   {
-    const double dt = clock.next(t, 3.0);
-    EXPECT_LE(3.0 * dt, travel * h * (1 + 1e-12));
-    EXPECT_GT(dt, 0.25 * travel * h / 3.0); // no sliver of a last step
-    t += dt;
-    last = dt;
+    const double dt = clock.next(t, n, 3.0);
+    // (The last step takes what is left, within a billionth of a step of the limit.)
+    EXPECT_LE(3.0 * dt, travel * h * (1 + 1e-9));
+    // Every step the limit's but the last: none before it depends on the end time,
+    // so a run extended past it takes the steps of one run to the later end.
+    if (!clock.at_end())
+      EXPECT_EQ(dt, travel * h / 3.0);
+    t = clock.at_end() ? end : t + dt;
     ++n;
   }
-  EXPECT_NEAR(t, end, 1e-15);
-  EXPECT_GT(last, 0);
-  EXPECT_GE(n, 300u);
-  EXPECT_LE(n, 301u);
+  EXPECT_EQ(t, end);
+  EXPECT_EQ(n, 303u); // 303 steps of 3.33e-5 s reach 1.01e-2 s
   EXPECT_EQ(clock.limited_steps(), n);
-  EXPECT_NEAR(clock.smallest_step(), std::min(travel * h / 3.0, last), 1e-18);
+  EXPECT_NEAR(clock.smallest_step(), travel * h / 3.0, 1e-18);
   // Without a limit the wave step holds at any speed.
   TimeStepControl unlimited;
   unlimited.set_up(wave, end, 0, h);
-  EXPECT_EQ(unlimited.next(0, 1e6), wave.dt);
+  EXPECT_EQ(unlimited.next(0, 0, 1e6), wave.dt);
 }
 
 TEST(TimeStepControl, OnceLimitedTheStepDoesNotGrowAgain)
@@ -127,10 +138,10 @@ TEST(TimeStepControl, OnceLimitedTheStepDoesNotGrowAgain)
   wave.n_steps = 1000;
   TimeStepControl clock;
   clock.set_up(wave, 0.1, 0.01, 0.01);
-  const double fast = clock.next(0, 3.0); // 3.33e-5
+  const double fast = clock.next(0, 0, 3.0); // 3.33e-5
   EXPECT_NEAR(fast, 1e-4 / 3, 1e-18);
   // The body turns and slows down: the step stays at the one the limit set.
-  EXPECT_EQ(clock.next(fast, 0.1), fast);
+  EXPECT_EQ(clock.next(fast, 1, 0.1), fast);
   // Faster still: shorter again.
-  EXPECT_LT(clock.next(2 * fast, 6.0), fast);
+  EXPECT_LT(clock.next(2 * fast, 2, 6.0), fast);
 }

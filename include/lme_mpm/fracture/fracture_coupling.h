@@ -132,7 +132,7 @@ private:
   bool shares_openings = false;
   /// A model measures its band from the neighbours' crack strains (the snapshot then
   /// holds them).
-  bool measures_bands = false;
+  bool measures_bands = false, reads_stresses = false;
   /// Threshold per field (FractureTrigger::Field), the lowest of the models'.
   std::array<double, 3> thresholds{};
   std::vector<std::uint8_t> seeds; ///< particles above a threshold

@@ -8,6 +8,7 @@
 #include <lme_mpm/fracture/neighbourhood.h>
 #include <lme_mpm/particles/particle_store.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -17,8 +18,10 @@ namespace lme_mpm
 /// before any particle changes state in the step (so the update is order-free).
 struct FractureFields
 {
-  std::vector<double> max_principal_stress; ///< of the undamaged stress; 0 once failed
-  std::vector<double> energy_density;       ///< sigma : eps / 2 (J/m^3); 0 once failed
+  /// Of the undamaged stress; 0 once failed, or once an oriented crack is fully open
+  /// (its undamaged stress across the crack grows with the opening).
+  std::vector<double> max_principal_stress;
+  std::vector<double> energy_density; ///< sigma : eps / 2 (J/m^3); 0 once failed
   /// Local grid spacing h of each particle (m), the length of eps = C_eps h and of a
   /// band width tied to the grid: the smallest side of the cell that held the particle
   /// at t = 0 (fixed, so a particle keeps its lengths as it moves). Empty on a uniform
@@ -37,6 +40,14 @@ struct FractureFields
   /// damage does not carry, damage times that strain (the whole strain once failed,
   /// 0 for an intact particle). Across a crack band it integrates to the opening.
   std::vector<double> crack_strain;
+  /// The undamaged stress of each particle where max_principal_stress reads it (0
+  /// elsewhere), its dim (dim + 1) / 2 components xx, xy, (xz,) yy, (yz, zz) one after
+  /// the other; filled only where a model reads it
+  /// (FractureModel::reads_stress_tensors()).
+  std::vector<double> stress;
+  /// 1 for a particle with an oriented crack (crack-oriented damage), whose stress
+  /// follows its crack's law, not the elastic field; filled with `stress`.
+  std::vector<std::uint8_t> cracked;
 
   double spacing_of(const std::size_t p, const double uniform_spacing) const
   {
@@ -78,7 +89,11 @@ struct FractureContext
   double thickness      = 1; ///< 2D thickness, for the particle spacing
   unsigned int dim      = 2;
   double p_wave_modulus = 0; ///< rho c_P^2 of the material, for sanity checks
-  std::string section;       ///< "Material N/Fracture", for messages
+  /// lambda / M of the material (the stress across a uniaxial strain over the stress
+  /// along it, as the material gives them): how the normal stress across a crack
+  /// pulls on the stress parallel to it (crack-oriented damage).
+  double lame_coupling = 0;
+  std::string section; ///< "Material N/Fracture", for messages
 };
 
 /**
@@ -114,6 +129,8 @@ public:
   /// True if update() reads FractureFields::crack_strain (the coupling computes it
   /// only then).
   virtual bool reads_crack_strains() const { return false; }
+  /// True if update() reads FractureFields::stress (the coupling copies it only then).
+  virtual bool reads_stress_tensors() const { return false; }
 };
 
 template <int dim>

@@ -63,13 +63,15 @@ public:
   void set_prescribed_velocities(ParticleStore<dim> &particles, double t) const;
 
   /**
-   * history.csv: per named body force_<name>_x ... (with @p forces: the contact force
-   * it received) and displacement_<name>_x ... (its particles' mass-weighted mean
+   * history.csv: per named body force_<name>_x ... and force_<name>_mean_x ... (with
+   * @p forces: the contact force it received, over the force window and over the
+   * output interval) and displacement_<name>_x ... (its particles' mass-weighted mean
    * displacement).
    */
   void write_header(std::ostream &out, bool forces) const;
   void write_row(std::ostream &out, const ParticleStore<dim> &particles,
-                 const std::vector<Tensor<1, dim>> *forces) const;
+                 const std::vector<Tensor<1, dim>> *forces,
+                 const std::vector<Tensor<1, dim>> *mean_forces) const;
 
 private:
   std::vector<std::string> names_;

@@ -17,8 +17,8 @@ namespace lme_mpm
  * Verification against an exact solution ("Verification"): displacement, velocity
  * and optionally stress as functions of the reference position and t. At each
  * output time the relative L2 errors over the particles (weighted by their initial
- * volumes, normalised by the exact fields' largest norm over the output times) go
- * to history.csv; their maxima to summary.json.
+ * volumes, normalised by the exact fields' largest norm over the run) go to
+ * history.csv; their maxima over the history rows to summary.json.
  */
 template <int dim>
 class ExactSolution
@@ -28,9 +28,9 @@ public:
   void parse_parameters(ParameterHandler &prm);
   bool enabled() const { return displacement != nullptr; }
 
-  /// The normalising norms: the exact fields' largest L2 norms over the output times.
-  void compute_norms(const ParticleStore<dim> &particles, double end_time,
-                     double output_interval);
+  /// The normalising norms: the exact fields' largest L2 norms over 1001 times
+  /// spread evenly over the run.
+  void compute_norms(const ParticleStore<dim> &particles, double end_time);
 
   void write_header(std::ostream &out) const;
   /// Appends the errors at time @p t and updates their maxima.

@@ -3,16 +3,17 @@
 
 #include <lme_mpm/boundary/node_constraints.h>
 
-#include <limits>
+#include <cmath>
 #include <map>
 #include <string>
 
 namespace lme_mpm
 {
 /**
- * The largest reaction of one constrained set along one component, checked every
- * step ("Output/Peak force set" = 'name:y'), and the set's imposed displacement at
- * that moment: the peak load of a load-displacement test.
+ * The reaction of largest magnitude of one constrained set along one component,
+ * checked every step ("Output/Peak force set" = 'name:y'), with its sign, and the
+ * set's imposed displacement at that moment: the peak load of a load-displacement
+ * test, whether the set pulls or pushes.
  */
 template <int dim>
 class PeakForce
@@ -22,7 +23,8 @@ public:
   void parse(const std::string &entry, const NodeConstraints<dim> &constraints);
   void update(const NodeConstraints<dim> &constraints)
   {
-    if (set < constraints.size() && constraints[set].reaction()[component] > peak)
+    if (set < constraints.size() &&
+        std::abs(constraints[set].reaction()[component]) > std::abs(peak))
     {
       peak                 = constraints[set].reaction()[component];
       displacement_at_peak = constraints[set].displacement()[component];
@@ -38,7 +40,7 @@ public:
 
 private:
   unsigned int set = numbers::invalid_unsigned_int, component = 0;
-  double peak = -std::numeric_limits<double>::max(), displacement_at_peak = 0;
+  double peak = 0, displacement_at_peak = 0;
 };
 } // namespace lme_mpm
 

@@ -78,8 +78,19 @@ public:
   /// Crack opening from the particle's own strain, as a fraction of its law's
   /// critical opening (eigensoftening's band shares it)
   std::vector<double> crack_opening;
-  std::vector<double> dissipated;   ///< fracture energy dissipated so far (J)
-  std::vector<std::uint8_t> failed; ///< 1 once fully failed (no stress)
+  std::vector<double> dissipated; ///< fracture energy dissipated so far (J)
+  /// 1 once fully failed: no stress with isotropic damage, no traction across its
+  /// crack with crack-oriented damage
+  std::vector<std::uint8_t> failed;
+  /**
+   * Crack-oriented damage (doc/theory.md): the unit normal of the particle's crack,
+   * fixed at onset (zero: no crack, or isotropic damage, where `damage` scales the
+   * whole stress), and the coupling lambda / M of its material (lambda the Lame
+   * constant, M = lambda + 2 mu), which says how the normal stress across the crack
+   * pulls on the stress parallel to it.
+   */
+  std::vector<Tensor<1, dim>> crack_normal;
+  std::vector<double> crack_coupling;
   /// 1 for a copy of a particle another MPI rank owns (a ghost in this rank's halo):
   /// it takes part in the step so that the owned particles near the partition
   /// boundary see all their neighbours, but it is not output, summed or checked.
@@ -93,7 +104,7 @@ public:
         f(initial_volume), f(density), f(strain), f(strain_increment), f(stress), f(id),
         f(material_id), f(body_id), f(cell), f(lme_lambda), f(lme_position),
         f(lme_lambda_rate), f(damage), f(onset_strain), f(onset_stress), f(crack_opening),
-        f(dissipated), f(failed), f(ghost);
+        f(dissipated), f(failed), f(crack_normal), f(crack_coupling), f(ghost);
   }
 
 private:
@@ -102,22 +113,77 @@ private:
   std::uint64_t version = 0;
 };
 
-/// The share of its stress particle @p p carries: 1 - damage, and 0 once failed.
+/// The share of its stress particle @p p carries with isotropic damage: 1 - damage,
+/// and 0 once failed.
 template <int dim>
 inline double stress_factor(const ParticleStore<dim> &particles, const std::size_t p)
 {
   return particles.failed[p] ? 0.0 : 1 - particles.damage[p];
 }
 
+/// True if particle @p p has a crack of crack-oriented damage.
+template <int dim>
+inline bool has_crack_normal(const ParticleStore<dim> &particles, const std::size_t p)
+{
+  return particles.crack_normal[p].norm_square() > 0;
+}
+
 /**
- * The effective stress of particle @p p, (1 - damage) sigma and 0 once failed: what
- * the internal forces use, so what the output reports (`stress` is the undamaged one).
+ * The stress a particle with a crack of normal @p n carries, from its undamaged
+ * stress @p sigma: the derivative of the energy density
+ *   psi = sigma : eps / 2 - chi <s>+^2 / (2 M) - chi |tau|^2 / (2 mu),
+ * with s = n . sigma . n the normal traction across the crack (only while it pulls
+ * the faces apart), tau = (I - n n) sigma n the shear traction on the crack plane, and
+ * chi the damage (@p chi, 1 once failed):
+ *   sigma - chi <s>+ (c I + (1 - c) n n) - chi (n tau + tau n),
+ * with c = lambda / M (@p coupling). A closed crack carries its compression, and the
+ * stress parallel to the crack is kept; a fully open one carries no traction.
+ */
+template <int dim>
+inline SymmetricTensor<2, dim> cracked_stress(const SymmetricTensor<2, dim> &sigma,
+                                              const Tensor<1, dim> &n, const double chi,
+                                              const double coupling)
+{
+  const Tensor<1, dim> t      = sigma * n;
+  const double s              = t * n;
+  const Tensor<1, dim> tau    = t - s * n;
+  SymmetricTensor<2, dim> out = sigma;
+  const double open           = s > 0 ? chi * s : 0.0;
+  for (unsigned int i = 0; i < dim; ++i)
+    for (unsigned int j = i; j < dim; ++j)
+      out[i][j] -= open * ((i == j ? coupling : 0.0) + (1 - coupling) * n[i] * n[j]) +
+                   chi * (n[i] * tau[j] + tau[i] * n[j]);
+  return out;
+}
+
+/**
+ * The effective stress of particle @p p: what the internal forces use, so what the
+ * output reports (`stress` is the undamaged one). Isotropic damage: (1 - damage)
+ * sigma, and 0 once failed. Crack-oriented damage: cracked_stress().
  */
 template <int dim>
 inline SymmetricTensor<2, dim> effective_stress(const ParticleStore<dim> &particles,
                                                 const std::size_t p)
 {
+  if (has_crack_normal(particles, p))
+    return cracked_stress(particles.stress[p], particles.crack_normal[p],
+                          particles.failed[p] ? 1.0 : particles.damage[p],
+                          particles.crack_coupling[p]);
   return stress_factor(particles, p) * particles.stress[p];
+}
+
+/**
+ * The elastic energy per unit volume particle @p p stores, effective stress : strain
+ * / 2 (the energy density psi whose derivative the effective stress is, for a
+ * material linear in the strain).
+ */
+template <int dim>
+inline double stored_energy_density(const ParticleStore<dim> &particles,
+                                    const std::size_t p)
+{
+  if (has_crack_normal(particles, p))
+    return 0.5 * (effective_stress(particles, p) * particles.strain[p]);
+  return 0.5 * stress_factor(particles, p) * (particles.stress[p] * particles.strain[p]);
 }
 } // namespace lme_mpm
 

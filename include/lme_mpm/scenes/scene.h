@@ -4,11 +4,13 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <lme_mpm/base/archive.h>
+#include <lme_mpm/base/rank_reductions.h>
 #include <lme_mpm/base/registry.h>
 #include <lme_mpm/boundary/node_constraints.h>
 #include <lme_mpm/particles/particle_store.h>
 #include <lme_mpm/solver/run_parameters.h>
 
+#include <functional>
 #include <map>
 #include <ostream>
 #include <string>
@@ -79,22 +81,56 @@ private:
   unsigned int bodies, constraints;
 };
 
-/// What a scene sees at the end of a run.
+/**
+ * What a scene sees of the run: after every step (observe(), finished()), in each
+ * history row (write_history_row()) and at the end (add_results()).
+ */
 template <int dim>
 struct SceneState
 {
+  /**
+   * The particles. After a step: this rank's (on several MPI ranks some are ghosts,
+   * copies of another rank's, flagged in `ghost`: sum over owned() ones and then
+   * over the ranks). In a history row and at the end: every particle of the run, on
+   * rank 0 (the rank that writes the files).
+   */
   const ParticleStore<dim> *particles = nullptr;
   /// "Body N/Name" per body (empty where unnamed).
   const std::vector<std::string> *body_names = nullptr;
   /// The run's parameters, as adjust() left them.
   const RunParameters<dim> *run = nullptr;
-  /// Per body: the contact force it received, averaged since the previous history
-  /// row, and the largest of these means so far (empty without contact).
+  /**
+   * Per body: the contact force it received, its mean over the force window
+   * (Output/Force window) that ends at this step, and the largest magnitude of that
+   * mean so far (empty without contact). Updated every step, so that peaks and stop
+   * rules judged on them do not depend on the output cadence.
+   */
   const std::vector<Tensor<1, dim>> *contact_forces = nullptr;
   const std::vector<double> *peak_contact_forces    = nullptr;
+  /// Per body, in a history row: the contact force's mean over the output interval
+  /// the row closes (its impulse over the interval); null after a step.
+  const std::vector<Tensor<1, dim>> *contact_force_means = nullptr;
   /// The constrained node sets, with their reactions and impulses.
   const NodeConstraints<dim> *constraints = nullptr;
-  double time                             = 0;
+  /// After a step: sums and maxima over the MPI ranks (every rank calls them
+  /// together; on one rank they return their argument). Null in a history row and at
+  /// the end, which rank 0 alone sees.
+  const RankReductions *ranks = nullptr;
+  /**
+   * After a step: every particle of the run, gathered on rank 0 (elsewhere an empty
+   * store; on one rank the particles themselves). Every rank must call it at the
+   * same step, so decide to on reduced values; it costs a gather of all particles on
+   * several ranks.
+   */
+  std::function<const ParticleStore<dim> &()> all_particles;
+  double time = 0;
+  /// The length of the step just taken (0 in a history row or at the end).
+  double step_length = 0;
+  /// Output/Force window (s): the span of the means scenes judge loads by.
+  double force_window = 0;
+
+  /// True if particle @p i is this rank's own (not a ghost).
+  bool owned(const std::size_t i) const { return particles->ghost[i] == 0; }
 };
 
 /**
@@ -131,14 +167,22 @@ public:
   /// Their values in one history row, each preceded by a comma.
   virtual void write_history_row(std::ostream &, const SceneState<dim> &) const {}
   /**
-   * Asked after each history row: a non-empty answer ends the run there, completed,
+   * Called after every step on every rank (the state holds this rank's particles):
+   * the scene tracks here what its results take the largest value, the time of a
+   * maximum or a threshold crossing of, so that they do not depend on how often
+   * history rows are written. Keep it cheap: it runs as often as the step.
+   */
+  virtual void observe(const SceneState<dim> &) {}
+  /**
+   * Asked after every step, after observe(): a non-empty answer ends the run there,
    * with the answer as the reason in summary.json (a load test stops once the
-   * specimen has failed, as a testing machine does). The default never stops early.
+   * specimen has failed, as a testing machine does). Every rank must give the same
+   * answer (judge on reduced values). The default never stops early.
    */
   virtual std::string finished(const SceneState<dim> &) const { return {}; }
-  /// Saves or loads what the scene has accumulated over the run (peaks it tracks in
-  /// its history rows), so that a resumed run reports the same as an uninterrupted
-  /// one. The default has nothing to keep.
+  /// Saves or loads what the scene has accumulated over the run (the peaks observe()
+  /// tracks), so that a resumed run reports the same as an uninterrupted one. The
+  /// default has nothing to keep.
   virtual void serialize(Archive &) {}
   /// Adds the scene's results to summary.json.
   virtual void add_results(const SceneState<dim> &, std::map<std::string, double> &) const

@@ -37,10 +37,11 @@ std::string ramped_velocity(double vx, double vy, double ramp);
 void set_notch_crack(EntryWriter &writer, const std::string &body,
                      const std::string &polyline, const std::string &owner);
 /**
- * A load test's stop: once the contact force on body @p body (its mean over the last
- * history row) has fallen below @p fraction of its peak and some particle has begun
- * to soften, the reason to end the run (empty before, with a fraction of 0, or without
- * contact), as a testing machine stops after the specimen fails.
+ * A load test's stop: once the contact force on body @p body (its mean over the force
+ * window, after a step) has fallen below @p fraction of the largest it has reached and
+ * some particle has begun to soften, the reason to end the run (empty before, with a
+ * fraction of 0, or without contact), as a testing machine stops after the specimen
+ * fails.
  */
 template <int dim>
 std::string load_fell_below(const SceneState<dim> &state, unsigned int body,
@@ -90,6 +91,49 @@ double rayleigh_wave_speed(double E, double nu, double rho, bool plane_stress);
 template <int dim>
 double crack_path_length(const ParticleStore<dim> &particles, unsigned int body,
                          double thickness, double threshold = 0.99);
+/**
+ * The crack a damage field shows, in the x-y plane of the reference configuration:
+ * the particles of one cluster of crack_clusters(), cut into slices one particle
+ * spacing wide along the cluster's main axis; each slice gives a point of the path
+ * (its particles' centroid) and the band's width there (the extent of its particles
+ * across the axis plus one spacing).
+ */
+struct CrackPath
+{
+  double spacing = 0;
+  std::vector<Point<2>> points;
+  std::vector<double> widths;
+  /// The path's length: its polyline's plus one spacing (the crack's extent within
+  /// its end slices); 0 without damaged particles.
+  double length() const;
+};
+/// The crack_path() of the largest cluster of @p body's particles with damage of at
+/// least @p threshold, or with an @p origin (a notch tip) of the cluster that comes
+/// nearest to it.
+template <int dim>
+CrackPath crack_path(const ParticleStore<dim> &particles, unsigned int body,
+                     double thickness, double threshold,
+                     const Point<2> *origin = nullptr);
+/// Where a crack's energy went (doc/outputs.md).
+struct CrackBand
+{
+  /// The median of the path's widths over its central 80 % (m).
+  double width = 0;
+  /// Fracture energy dissipated by the body's particles, all of them and those within
+  /// one width of the crack's line (J).
+  double dissipated = 0, on_crack = 0;
+  /// The share of it dissipated farther than one width from the line.
+  double off_crack_share = 0;
+};
+/// The band of @p path, the energy dissipated by @p body's particles, and its share
+/// farther than one band width from the polyline @p line (reference positions).
+template <int dim>
+CrackBand crack_band(const ParticleStore<dim> &particles, unsigned int body,
+                     const CrackPath &path, const std::vector<Point<2>> &line);
+/// Adds crack_band_width and dissipation_off_crack_share of @p band to @p results.
+void add_crack_band(const CrackBand &band, std::map<std::string, double> &results);
+/// The distance from @p x to the polyline @p line (to its point if it has one).
+double distance_to_polyline(const Point<2> &x, const std::vector<Point<2>> &line);
 /**
  * Adds crack_area (crack_path_length() times @p thickness, m^2) and, with a fracture
  * energy @p G_F > 0, fracture_energy_ratio = dissipated_energy / (G_F crack_area) to

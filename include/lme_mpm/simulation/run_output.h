@@ -18,6 +18,7 @@
 #include <lme_mpm/simulation/parts.h>
 #include <lme_mpm/solver/time_step_control.h>
 
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <map>
@@ -77,23 +78,31 @@ public:
    * checkpoint with @p resumed), and the run's banner.
    */
   void prepare(bool resumed, const TimeStepControl &clock);
-  /// After each step of length @p dt: its external work, the peak force and the
-  /// contact forces' means.
-  void after_step(double external_work, double dt);
+  /**
+   * After each step of length @p dt, which ended at time @p t: its external work, the
+   * energy drift, the peak force, the contact forces' means, and the scene's own
+   * tracking and stop rule (stopping() tells whether it asked to end the run).
+   */
+  void after_step(double external_work, double dt, double t);
   /// The first history row of a run (not of a resumed one), at step 0.
   void write_first_row(double t);
-  /// True once @p t has reached the next output time (within half a step @p dt).
-  bool due(const double t, const double dt) const { return t >= next_time - 0.5 * dt; }
+  /// True once @p t has reached the next output time of the history or of a file
+  /// series (within half a step @p dt).
+  bool due(const double t, const double dt) const
+  {
+    return t >= std::min({next_time, next_particle_time, next_grid_time}) - 0.5 * dt;
+  }
   /**
-   * The row of step @p step at time @p t; the next output time is the first multiple
-   * of the interval past t (with the step @p dt).
+   * At step @p step, time @p t: the history row and the particle and grid files that
+   * are due; the next output times are the first multiples of their intervals past
+   * t (with the step @p dt).
    */
   void write_due_row(unsigned int step, double t, double dt);
-  /// A history row (and particle and grid files) at step @p step, time @p t.
-  void write_row(unsigned int step, double t);
-  /// The scene's reason to end the run after the row just written (every rank gets
-  /// rank 0's answer); records it for summary.json.
-  std::string scene_finished(double t);
+  /// The end of a run at step @p step, time @p t: a history row and particle and
+  /// grid files (where on), those that write_due_row() has not written at this step.
+  void write_final(unsigned int step, double t);
+  /// True once the scene's stop rule has ended the run (after_step()).
+  bool stopping() const { return !scene_stop.empty(); }
   /// Why the scene ended the run (empty if it did not).
   const std::string &stop_reason() const { return scene_stop; }
 
@@ -111,8 +120,12 @@ public:
   /// @p exchange_seconds) and the closing line.
   void report_end(double wall, unsigned int steps, double exchange_seconds);
 
-  /// What the scene sees of the run at @p t with the particles @p particles.
+  /// What the scene sees of the run in a history row or at its end, at @p t, with
+  /// the particles @p particles (every particle, on rank 0).
   SceneState<dim> scene_state(double t, const ParticleStore<dim> &particles) const;
+  /// What the scene sees after a step of length @p dt that ended at @p t (this
+  /// rank's particles).
+  SceneState<dim> step_state(double t, double dt) const;
   /// The particles the output reads: all of them (gathered on rank 0 of a
   /// distributed run, empty elsewhere).
   const ParticleStore<dim> &observed() const;
@@ -137,6 +150,11 @@ private:
         results;
   };
   void add_columns();
+  /// A history row, a particle file and a grid file, as asked.
+  void write_outputs(unsigned int step, double t, bool row, bool particles, bool grid);
+  /// The steps of the last history row, particle file and grid file.
+  unsigned int row_step = 0, particle_step = 0, grid_step = 0;
+  bool any_row = false, any_particle_file = false, any_grid_file = false;
   /// The nodal masses and rates summed over their owners (distributed grid files).
   void write_grid_file(double t);
 
@@ -149,8 +167,6 @@ private:
   mutable ParticleStore<dim> gathered;
   std::size_t n_particles = 0;
   double initial_mass     = 0;
-  /// The step of the row being written (step 0's energy is the drift's reference).
-  unsigned int row_step = 0;
 
   EnergyBalance<dim> energy;
   PeakForce<dim> peak_force;
@@ -161,7 +177,11 @@ private:
   std::unique_ptr<ParticleOutput<dim>> particle_output;
   std::unique_ptr<GridOutput<dim>> grid_output;
   HistoryFile history;
-  double next_time                   = 0;
+  /// The next times of a history row, a particle file and a grid file.
+  double next_time = 0, next_particle_time = 0, next_grid_time = 0;
+  /// The interval of the series that writes when @p next is due (a huge one for a
+  /// series that is off).
+  double file_interval(bool on, double interval) const;
   std::uint64_t resumed_history_size = 0;
   std::map<std::string, double> results;
   std::string scene_stop;

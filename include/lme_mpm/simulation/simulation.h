@@ -85,6 +85,12 @@ private:
   void serialize(Archive &ar);
   void write_checkpoint();
   bool checkpoint_due(std::chrono::steady_clock::time_point last) const;
+  /// True if Checkpoint/Every steps or Every seconds asks for checkpoints.
+  bool checkpoints_on() const
+  {
+    return parts.parameters.checkpoint_every_steps > 0 ||
+           parts.parameters.checkpoint_every_seconds > 0;
+  }
   /// Where this rank's checkpoint goes in @p directory.
   std::string checkpoint_file(const std::string &directory) const;
 

@@ -59,6 +59,12 @@ struct RunParameters
   // Output
   std::string directory;
   double output_interval = 0;
+  /// Simulated time between particle files and between grid files (0: the history's
+  /// interval).
+  double particle_interval = 0, grid_interval = 0;
+  /// The span of the moving means that loads are judged by (0: 10 h_min / c_P, set
+  /// by the run once the wave speed is known).
+  double force_window  = 0;
   bool write_particles = true, write_grid = false;
   std::string peak_force_set;
   unsigned int verbosity = 1;
