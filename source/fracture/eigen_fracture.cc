@@ -4,6 +4,7 @@
 #include <lme_mpm/base/tensor_tools.h>
 #include <lme_mpm/fracture/fracture_model.h>
 #include <lme_mpm/fracture/softening_law.h>
+#include <lme_mpm/particles/damage_form.h>
 
 #include <atomic>
 #include <cmath>
@@ -148,15 +149,10 @@ public:
         continue;
       // Lengths from the particle's own cell: on a graded grid a crack in coarse cells
       // spreads over a wider band than one in fine cells.
-      const double h_p  = F.spacing_of(p, grid_spacing);
-      const double eps  = C_eps * h_p;
-      const double eps2 = eps * eps;
-      // What drives the damage: the normal strain and stress across the particle's
-      // crack once it has an oriented one, the max principal ones otherwise.
-      const bool cracked      = has_crack_normal(P, p);
-      const Tensor<1, dim> &n = P.crack_normal[p];
-      const double eps_I = cracked ? n * (P.strain[p] * n) : max_principal(P.strain[p]);
-      const double sig_I = cracked ? n * (P.stress[p] * n) : F.max_principal_stress[p];
+      const double h_p          = F.spacing_of(p, grid_spacing);
+      const double eps          = C_eps * h_p;
+      const double eps2         = eps * eps;
+      const auto [eps_I, sig_I] = damage_drive(P, p, F.max_principal_stress[p]);
       if (P.onset_strain[p] == 0)
       {
         if (!nb.has_row(p))
@@ -233,20 +229,14 @@ public:
       const double chi     = std::min(1.0, std::max(chi_old, chi_new));
       if (chi > chi_old)
       {
-        // Secant damage: the energy density is linear in chi, so losing d chi of it
-        // dissipates d chi times what full damage would take, sigma : eps / 2 with
-        // isotropic damage, and the part across the crack with an oriented one.
-        const double released =
-            cracked ? 0.5 * ((P.stress[p] -
-                              cracked_stress(P.stress[p], n, 1.0, P.crack_coupling[p])) *
-                             P.strain[p])
-                    : 0.5 * (P.stress[p] * P.strain[p]);
-        P.dissipated[p] += (chi - chi_old) * P.initial_volume[p] * released;
+        // Secant damage: losing d chi of the damageable energy dissipates it.
+        P.dissipated[p] +=
+            (chi - chi_old) * P.initial_volume[p] * damageable_energy_density(P, p);
         P.damage[p] = chi;
       }
       // An oriented crack fully open still carries compression across it and the
       // stress parallel to it: it is not failed.
-      if (chi >= 1 && !cracked)
+      if (chi >= 1 && !has_crack_normal(P, p))
         P.failed[p] = 1;
     }
     if (snapped)

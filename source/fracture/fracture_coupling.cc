@@ -4,6 +4,7 @@
 #include <lme_mpm/base/parallel.h>
 #include <lme_mpm/base/tensor_tools.h>
 #include <lme_mpm/fracture/fracture_coupling.h>
+#include <lme_mpm/particles/damage_form.h>
 
 #include <algorithm>
 #include <array>
@@ -219,12 +220,7 @@ void FractureCoupling<dim>::take_snapshot(const ParticleStore<dim> &store,
   {
     const bool alive   = !store.failed[p];
     const bool cracked = has_crack_normal(store, p);
-    // The neighbours' onset mean reads the undamaged stress of a softening particle,
-    // with either damage form, and nothing of one whose crack is fully open: failed
-    // with isotropic damage, open with an oriented one (whose undamaged stress across
-    // the crack grows with the opening).
-    const bool loads = alive && !(cracked && store.damage[p] >= 1);
-    const double s   = loads ? max_principal(store.stress[p]) : 0.0;
+    const double s     = alive ? max_principal(store.stress[p]) : 0.0;
     const double w =
         !alive    ? 0.0
         : cracked ? stored_energy_density(store, p)
@@ -232,9 +228,11 @@ void FractureCoupling<dim>::take_snapshot(const ParticleStore<dim> &store,
     fields.max_principal_stress[p] = s;
     if (reads_stresses)
     {
+      // A cracked particle's stress follows its crack's law: the onset means of
+      // crack-oriented damage leave it out.
       fields.cracked[p] = cracked;
       const SymmetricTensor<2, dim> sigma =
-          loads ? store.stress[p] : SymmetricTensor<2, dim>();
+          alive ? store.stress[p] : SymmetricTensor<2, dim>();
       constexpr unsigned int n_c = SymmetricTensor<2, dim>::n_independent_components;
       unsigned int c             = 0;
       for (unsigned int i = 0; i < dim; ++i)

@@ -1,6 +1,7 @@
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/base/parameters.h>
 #include <lme_mpm/materials/linear_elastic.h>
+#include <lme_mpm/particles/damage_form.h>
 
 #include <cmath>
 

@@ -2,6 +2,7 @@
 
 #include <lme_mpm/base/tensor_tools.h>
 #include <lme_mpm/output/particle_output.h>
+#include <lme_mpm/particles/damage_form.h>
 
 #include <cmath>
 #include <limits>

@@ -1,6 +1,7 @@
 #include <deal.II/base/multithread_info.h>
 
 #include <lme_mpm/base/parallel.h>
+#include <lme_mpm/particles/damage_form.h>
 #include <lme_mpm/solver/grid_transfer.h>
 
 #include <atomic>

@@ -7,6 +7,7 @@
 #include <lme_mpm/output/particle_output.h>
 #include <lme_mpm/output/probes.h>
 #include <lme_mpm/output/run_files.h>
+#include <lme_mpm/particles/damage_form.h>
 #include <lme_mpm/particles/particle_store.h>
 
 #include "test_helpers.h"

@@ -8,6 +8,7 @@
 #include <lme_mpm/fracture/fracture_coupling.h>
 #include <lme_mpm/grid/background_grid.h>
 #include <lme_mpm/materials/material_set.h>
+#include <lme_mpm/particles/damage_form.h>
 
 #include <cmath>
 #include <iostream>

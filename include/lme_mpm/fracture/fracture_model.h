@@ -18,10 +18,8 @@ namespace lme_mpm
 /// before any particle changes state in the step (so the update is order-free).
 struct FractureFields
 {
-  /// Of the undamaged stress; 0 once failed, or once an oriented crack is fully open
-  /// (its undamaged stress across the crack grows with the opening).
-  std::vector<double> max_principal_stress;
-  std::vector<double> energy_density; ///< sigma : eps / 2 (J/m^3); 0 once failed
+  std::vector<double> max_principal_stress; ///< of the undamaged stress; 0 once failed
+  std::vector<double> energy_density;       ///< sigma : eps / 2 (J/m^3); 0 once failed
   /// Local grid spacing h of each particle (m), the length of eps = C_eps h and of a
   /// band width tied to the grid: the smallest side of the cell that held the particle
   /// at t = 0 (fixed, so a particle keeps its lengths as it moves). Empty on a uniform
@@ -40,13 +38,14 @@ struct FractureFields
   /// damage does not carry, damage times that strain (the whole strain once failed,
   /// 0 for an intact particle). Across a crack band it integrates to the opening.
   std::vector<double> crack_strain;
-  /// The undamaged stress of each particle where max_principal_stress reads it (0
-  /// elsewhere), its dim (dim + 1) / 2 components xx, xy, (xz,) yy, (yz, zz) one after
-  /// the other; filled only where a model reads it
-  /// (FractureModel::reads_stress_tensors()).
+  /// The undamaged stress of each particle (0 once failed), its dim (dim + 1) / 2
+  /// components xx, xy, (xz,) yy, (yz, zz) one after the other; filled only where a
+  /// model reads it (FractureModel::reads_stress_tensors()).
   std::vector<double> stress;
   /// 1 for a particle with an oriented crack (crack-oriented damage), whose stress
-  /// follows its crack's law, not the elastic field; filled with `stress`.
+  /// follows its crack's law, not the elastic field; filled with `stress`. Taken
+  /// before the step's update, so a crack that opens in it does not depend on the
+  /// order the particles are visited in.
   std::vector<std::uint8_t> cracked;
 
   double spacing_of(const std::size_t p, const double uniform_spacing) const
