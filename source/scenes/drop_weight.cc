@@ -362,17 +362,23 @@ public:
         peak_reaction = reaction, time_of_peak_reaction = t - first_contact;
     }
     // A front moves only when a particle of the beam crosses its damage level:
-    // counted every step, located again (over every particle) when the count changes.
+    // counted every step (both levels in one pass), located again (over every
+    // particle) when the count changes.
     const Point<2> notch_tip(cx, cy + notch_depth);
     const double thickness = dim == 2 ? width : 1.0;
+    std::vector<double> counts(2, 0.0);
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p.body_id[i] == b && p.damage[i] >= softening_onset && state.owned(i))
+      {
+        counts[1] += 1;
+        if (p.damage[i] >= crack_level)
+          counts[0] += 1;
+      }
+    state.ranks->sum(counts);
     for (GaugedFront *front : {&crack, &softening})
     {
       const double level = front == &crack ? crack_level : softening_onset;
-      double count       = 0;
-      for (std::size_t i = 0; i < p.size(); ++i)
-        if (p.body_id[i] == b && p.damage[i] >= level && state.owned(i))
-          ++count;
-      count = state.ranks->sum(count);
+      const double count = counts[front == &crack ? 0 : 1];
       if (count == front->count)
         continue;
       front->count                  = count;

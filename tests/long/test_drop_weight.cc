@@ -95,7 +95,9 @@ TEST(DropWeight, SingleFieldSupportsTakeWhatTheBeamAndHammerLose)
       const auto &row   = h.second[i];
       const double span = row[t] - h.second[i - 1][t];
       if (!contact)
+      {
         EXPECT_EQ(row[impact], row[hammer]);
+      }
       support += row[reaction] * span;
       worst = std::max(worst, std::abs((row[hammer] + row[beam] - row[reaction]) * span));
       if (row[t] < 3e-5)

@@ -135,3 +135,36 @@ TEST(SceneTools, LoadTestStopsOnlyOnceTheSpecimenSoftens)
   EXPECT_EQ(scenes::load_fell_below(state, 0, 0.3), "");
   EXPECT_EQ(scenes::load_fell_below(state, 0, 0.0), "");
 }
+
+TEST(SceneTools, CrackBandMeasuresTheWidthAndTheEnergyOffTheCrack)
+{
+  // A crack three particle columns wide (x = 9.5, 10.5, 11.5 mm) from the bottom face
+  // to y = 25 mm, each of its particles dissipating 1 J, and a patch of four particles
+  // far from it dissipating 2 J each with damage below the path's threshold.
+  ParticleStore<2> p = block();
+  for (const double x : {0.0095, 0.0105, 0.0115})
+    damage_column(p, x, 0, 0.025);
+  double on = 0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.damage[i] > 0)
+      p.dissipated[i] = 1, on += 1;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.reference_position[i][0] < 0.002 && p.reference_position[i][1] > 0.028)
+      p.damage[i] = 0.3, p.dissipated[i] = 2;
+  const scenes::CrackPath path = scenes::crack_path(p, 0, 0.1, 0.5);
+  ASSERT_EQ(path.widths.size(), 25u);
+  EXPECT_NEAR(path.spacing, 1e-3, 1e-12);
+  EXPECT_NEAR(path.length(), 0.025, 1e-12);
+  const scenes::CrackBand band =
+      scenes::crack_band(p, 0, path, {Point<2>(0.0105, 0), Point<2>(0.0105, 0.025)});
+  EXPECT_NEAR(band.width, 0.003, 1e-12);
+  EXPECT_NEAR(band.dissipated, on + 8, 1e-12);
+  EXPECT_NEAR(band.on_crack, on, 1e-12);
+  EXPECT_NEAR(band.off_crack_share, 8 / (on + 8), 1e-12);
+  // Particles of another body count nowhere.
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.reference_position[i][1] > 0.028)
+      p.body_id[i] = 1;
+  const std::vector<Point<2>> line = {Point<2>(0.0105, 0), Point<2>(0.0105, 0.025)};
+  EXPECT_NEAR(scenes::crack_band(p, 0, path, line).off_crack_share, 0, 1e-12);
+}

@@ -88,7 +88,9 @@ TEST(TimeStepControl, SlowParticlesTakeTheWaveStepsAndTheLastLandsOnTheEnd)
     const double dt = clock.next(t, n, 1.0);
     EXPECT_EQ(last, n == 967u);
     if (!last)
+    {
       EXPECT_EQ(dt, wave.dt);
+    }
     t = clock.at_end() ? 1e-3 : t + dt;
     ++n;
   }
@@ -117,7 +119,9 @@ TEST(TimeStepControl, FastParticlesTravelAtMostTheLimitAndLandOnTheEnd)
     // Every step the limit's but the last: none before it depends on the end time,
     // so a run extended past it takes the steps of one run to the later end.
     if (!clock.at_end())
+    {
       EXPECT_EQ(dt, travel * h / 3.0);
+    }
     t = clock.at_end() ? end : t + dt;
     ++n;
   }
