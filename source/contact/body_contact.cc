@@ -109,7 +109,7 @@ void BodyContact<dim>::parse_parameters(ParameterHandler &prm, const double thic
                               std::to_string(n_bodies)));
   pairs.set_up(grid, in.normal, in.volume_fraction, in.friction, in.pairs, n_bodies,
                thickness);
-  AssertThrow(!bodies.any_prescribed() || multi_field,
+  AssertThrow(!bodies.any_prescribed_particles() || multi_field,
               ExcBadInput("Contact/Type",
                           "a body has a prescribed velocity; it acts on the others "
                           "through contact only: set Contact/Type = multi-field"));

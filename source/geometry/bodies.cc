@@ -51,6 +51,7 @@ void Bodies<dim>::parse_parameters(ParameterHandler &prm, const unsigned int n_b
 {
   names_.assign(n_bodies, "");
   flags.assign(n_bodies, 0);
+  exact_flags.assign(n_bodies, 0);
   functions.clear();
   functions.resize(n_bodies);
   entries.assign(n_bodies, "");
@@ -78,6 +79,12 @@ void Bodies<dim>::parse_parameters(ParameterHandler &prm, const unsigned int n_b
       if (!input::depends_on_space_or_time(expr))
         constant_value[b] = v0, constant[b] = 1;
     }
+    // Declared with the body's shape (ParticleGenerator), read here for its rule.
+    exact_flags[b] = prm.get("Surface") == "exact";
+    AssertThrow(!exact_flags[b] || flags[b],
+                ExcBadInput(section + "/Surface",
+                            "'exact' is a rigid surface that moves as prescribed: give "
+                            "the body a Prescribed velocity"));
     prm.leave_subsection();
 
     const std::string &n = names_[b];
@@ -101,6 +108,22 @@ void Bodies<dim>::parse_parameters(ParameterHandler &prm, const unsigned int n_b
   AssertThrow(n_prescribed < n_bodies || n_bodies == 0,
               ExcBadInput("Body 1/Prescribed velocity",
                           "every body is prescribed: nothing is left to compute"));
+}
+
+template <int dim>
+bool Bodies<dim>::any_prescribed_particles() const
+{
+  for (unsigned int b = 0; b < size(); ++b)
+    if (flags[b] && !exact_flags[b])
+      return true;
+  return false;
+}
+
+template <int dim>
+bool Bodies<dim>::any_exact() const
+{
+  return std::any_of(exact_flags.begin(), exact_flags.end(),
+                     [](const std::uint8_t f) { return f != 0; });
 }
 
 template <int dim>
@@ -183,7 +206,8 @@ void Bodies<dim>::write_header(std::ostream &out, const bool forces) const
 template <int dim>
 void Bodies<dim>::write_row(std::ostream &out, const ParticleStore<dim> &store,
                             const std::vector<Tensor<1, dim>> *forces,
-                            const std::vector<Tensor<1, dim>> *mean_forces) const
+                            const std::vector<Tensor<1, dim>> *mean_forces,
+                            const std::vector<Tensor<1, dim>> *rigid_displacements) const
 {
   if (!any_named())
     return;
@@ -204,8 +228,11 @@ void Bodies<dim>::write_row(std::ostream &out, const ParticleStore<dim> &store,
       for (const auto *f : {forces, mean_forces})
         for (unsigned int d = 0; d < dim; ++d)
           out << "," << (*f)[b][d];
+    const bool rigid = exact(b) && rigid_displacements;
     for (unsigned int d = 0; d < dim; ++d)
-      out << "," << (mass[b] > 0 ? moment[b][d] / mass[b] : 0.0);
+      out << ","
+          << (rigid ? (*rigid_displacements)[b][d]
+                    : (mass[b] > 0 ? moment[b][d] / mass[b] : 0.0));
   }
 }
 

@@ -42,10 +42,19 @@ template <int dim>
 struct BodyEntries
 {
   unsigned int material = 1, particles_per_cell = 2;
-  std::string shape, holes, placement, zones;
+  std::string shape, holes, placement, zones, surface;
 
   void entries(EntryList &list)
   {
+    list.add("Surface", surface, "particles", Patterns::Selection("particles|exact"),
+             "How a body that moves as prescribed (Prescribed velocity) meets the "
+             "others. 'particles': it is filled with particles and touches the others "
+             "through multi-field contact at the grid's nodes. 'exact': it has no "
+             "particles; the exact surface of its Shape (rectangle, disc or cylinder, "
+             "no Holes) moves rigidly and pushes each particle of the other bodies by "
+             "a penalty on the gap between the particle's domain and the surface, so "
+             "that the contact grows continuously inside a cell (doc/contact.md). "
+             "Needs a Prescribed velocity; not Contact/Type = multi-field.");
     list.add("Material", material, "1", Patterns::Integer(1),
              "Number N of the 'Material N' the body is made of.");
     list.add("Shape", shape,
@@ -103,6 +112,8 @@ struct BodyInput
   /// Material zones: material index and region, later ones winning.
   std::vector<std::pair<unsigned int, std::unique_ptr<Geometry<dim>>>> zones;
   bool uniform = false;
+  /// Surface = exact: a rigid surface, no particles.
+  bool exact = false;
   std::unique_ptr<Functions::ParsedFunction<dim>> velocity;
 };
 
@@ -119,6 +130,7 @@ BodyInput<dim> read_body(ParameterHandler &prm, const std::string &section,
   EntryList list(prm, EntryList::Mode::parse);
   in.entries(list);
   placement.material = in.material - 1;
+  body.exact         = in.surface == "exact";
   AssertThrow(placement.material < n_materials,
               ExcBadInput(section + "/Material",
                           "must be between 1 and Problem/Number of materials = " +
@@ -184,14 +196,6 @@ void place_particles(BodyInput<dim> &body, const unsigned int b,
                      ParticleStore<dim> &store)
 {
   BodyPlacement &placement = body.placement;
-  const auto box           = check_inside_grid(body, grid);
-  std::array<unsigned int, dim> lo, hi, q_lo{}, q_hi;
-  for (unsigned int d = 0; d < dim; ++d)
-  {
-    grid.locate(std::max(box.first[d], grid.coordinates(d).front()), d, lo[d]);
-    grid.locate(std::min(box.second[d], grid.coordinates(d).back()), d, hi[d]);
-    q_hi[d] = placement.particles_per_cell - 1;
-  }
   const QGauss<1> gauss_rule(placement.particles_per_cell);
   const QIterated<1> uniform_rule(QMidpoint<1>(), placement.particles_per_cell);
   const Quadrature<1> &rule = body.uniform
@@ -205,6 +209,23 @@ void place_particles(BodyInput<dim> &body, const unsigned int b,
   {
     placement.offsets.push_back(rule.point(q)[0]);
     placement.weights.push_back(rule.weight(q));
+  }
+  // A rigid exact surface has no particles and may reach outside the grid.
+  if (body.exact)
+  {
+    AssertThrow(body.holes.empty() && body.zones.empty(),
+                ExcBadInput(placement.section + "/Surface",
+                            "'exact' takes the Shape alone: leave Holes and Material "
+                            "zones empty"));
+    return;
+  }
+  const auto box = check_inside_grid(body, grid);
+  std::array<unsigned int, dim> lo, hi, q_lo{}, q_hi;
+  for (unsigned int d = 0; d < dim; ++d)
+  {
+    grid.locate(std::max(box.first[d], grid.coordinates(d).front()), d, lo[d]);
+    grid.locate(std::min(box.second[d], grid.coordinates(d).back()), d, hi[d]);
+    q_hi[d] = placement.particles_per_cell - 1;
   }
   {
     // At most this many particles, before any is allocated (about 600 bytes each

@@ -37,6 +37,33 @@ public:
     return true;
   }
   BoundingBox<dim> bounding_box() const override { return BoundingBox<dim>({lo, hi}); }
+  bool signed_distance(const Point<dim> &x, double &distance,
+                       Tensor<1, dim> &normal) const override
+  {
+    // Per direction the distance outside the slab (negative inside it).
+    Tensor<1, dim> q, outside;
+    unsigned int deepest = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+    {
+      const double below = lo[d] - x[d], above = x[d] - hi[d];
+      q[d]       = std::max(below, above);
+      outside[d] = q[d] > 0 ? (below > above ? -q[d] : q[d]) : 0.0;
+      if (q[d] > q[deepest])
+        deepest = d;
+    }
+    const double out = outside.norm();
+    if (out > 0)
+    {
+      distance = out;
+      normal   = outside / out;
+      return true;
+    }
+    // Inside: the nearest face.
+    distance        = q[deepest];
+    normal          = Tensor<1, dim>();
+    normal[deepest] = x[deepest] - lo[deepest] < hi[deepest] - x[deepest] ? -1.0 : 1.0;
+    return true;
+  }
 
 private:
   Point<dim> lo, hi;
@@ -59,6 +86,19 @@ public:
     for (unsigned int d = 0; d < dim; ++d)
       lo[d] -= r, hi[d] += r;
     return BoundingBox<dim>({lo, hi});
+  }
+  bool signed_distance(const Point<dim> &x, double &distance,
+                       Tensor<1, dim> &normal) const override
+  {
+    const Tensor<1, dim> a = x - c;
+    const double l         = a.norm();
+    distance               = l - r;
+    normal                 = Tensor<1, dim>();
+    if (l > 0)
+      normal = a / l;
+    else
+      normal[dim - 1] = 1;
+    return true;
   }
 
 protected:
@@ -95,6 +135,34 @@ public:
     if (dim == 3)
       lo[dim - 1] = z0, hi[dim - 1] = z1;
     return BoundingBox<dim>({lo, hi});
+  }
+  bool signed_distance(const Point<dim> &x, double &distance,
+                       Tensor<1, dim> &normal) const override
+  {
+    // The lateral surface, and in 3D the end planes: a box in (radius, z).
+    const double dx = x[0] - cx, dy = x[1] - cy;
+    const double l = std::sqrt(dx * dx + dy * dy), radial = l - r;
+    Tensor<1, dim> n_radial;
+    if (l > 0)
+      n_radial[0] = dx / l, n_radial[1] = dy / l;
+    else
+      n_radial[1] = 1;
+    normal   = n_radial;
+    distance = radial;
+    if (dim < 3)
+      return true;
+    const double below = z0 - x[dim - 1], above = x[dim - 1] - z1;
+    const double axial = std::max(below, above);
+    Tensor<1, dim> n_axial;
+    n_axial[dim - 1] = below > above ? -1.0 : 1.0;
+    if (radial > 0 && axial > 0)
+    {
+      distance = std::sqrt(radial * radial + axial * axial);
+      normal   = (radial * n_radial + axial * n_axial) / distance;
+    }
+    else if (axial > radial)
+      distance = axial, normal = n_axial;
+    return true;
   }
 
 private:

@@ -46,6 +46,7 @@ void Simulation<dim>::serialize(Archive &ar)
   output.serialize(ar);
   parts.constraints.serialize(ar);
   parts.contact.serialize(ar);
+  parts.rigid.serialize(ar);
   parts.scene->serialize(ar);
   parts.particles.for_each_field([&](auto &field) { ar(field); });
   auto lines = parts.cracks.polylines();

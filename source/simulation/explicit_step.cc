@@ -250,6 +250,12 @@ ExplicitStep<dim>::correct_accelerations(const double t_new)
   StageTimer::Scope scope(timer, stage.accelerations);
   GridTransfer<dim> &transfer = parts.transfer;
   NodalFields<dim> &nodes     = transfer.nodes();
+  if (parts.rigid.active())
+  {
+    // The rigid surfaces push on the end-of-step positions (the forces of t_new).
+    StageTimer::Scope contact_scope(timer, stage.contact);
+    result.rigid_work = parts.rigid.apply(transfer, parts.particles, t_new - dt, dt);
+  }
   transfer.accelerations(min_mass);
   parts.contact.impose_prescribed_accelerations(nodes.acceleration, t_new,
                                                 derivative_step());
@@ -298,7 +304,10 @@ StepResult ExplicitStep<dim>::update_particles(const double t, const Corrected &
       0.5 * parts.grid.min_spacing(), result.first_bad, result.max_speed);
   result.max_speed = parts.ranks.max(result.max_speed);
   // The constraints' work is summed over the ranks already.
-  result.external_work = work + parts.ranks.sum(body_work + corrected.contact_work);
+  // The rigid surfaces' work is summed over the ranks already.
+  result.external_work =
+      work + corrected.rigid_work + parts.ranks.sum(body_work + corrected.contact_work);
+  parts.rigid.finish_step();
   return result;
 }
 

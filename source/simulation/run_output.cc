@@ -53,23 +53,24 @@ void RunOutput<dim>::add_columns()
                      [this](std::map<std::string, double> &r, const ParticleStore<dim> &,
                             double) { peak_force.add_results(r); }});
   columns.push_back(
-      {[&p](std::ostream &out) { p.bodies.write_header(out, p.contact.active()); },
+      {[&p](std::ostream &out) { p.bodies.write_header(out, p.contact_forces()); },
        [this](std::ostream &out, const ParticleStore<dim> &all, double)
        {
          // The contact forces' means over the force window and over the interval
          // this row closes.
-         contact_means.close_row(parts.contact.step_forces());
-         const bool contact = parts.contact.active();
+         contact_means.close_row(body_forces());
+         const bool contact = parts.contact_forces();
          parts.bodies.write_row(out, all, contact ? &contact_means.current() : nullptr,
-                                &contact_means.mean());
+                                &contact_means.mean(), &parts.rigid.displacements());
        },
        [this](std::map<std::string, double> &r, const ParticleStore<dim> &, double)
        {
-         if (parts.contact.active())
+         if (parts.contact_forces())
            for (unsigned int b = 0; b < parts.bodies.size(); ++b)
              if (!parts.bodies.name(b).empty())
                r["peak_contact_force_" + parts.bodies.name(b)] = contact_means.peak()[b];
          parts.contact.add_results(r);
+         parts.rigid.add_results(r);
        }});
   columns.push_back({[this](std::ostream &out) { probes.write_header(out); },
                      [this](std::ostream &out, const ParticleStore<dim> &all, double)
@@ -135,7 +136,7 @@ SceneState<dim> RunOutput<dim>::scene_state(const double t,
   state.body_names  = &parts.bodies.names();
   state.run         = &parts.parameters;
   state.constraints = &parts.constraints;
-  if (parts.contact.active())
+  if (parts.contact_forces())
   {
     state.contact_forces      = &contact_means.current();
     state.peak_contact_forces = &contact_means.peak();
@@ -203,6 +204,18 @@ void RunOutput<dim>::prepare(const bool resumed, const TimeStepControl &clock)
 }
 
 template <int dim>
+const std::vector<Tensor<1, dim>> &RunOutput<dim>::body_forces()
+{
+  if (!parts.rigid.active())
+    return parts.contact.step_forces();
+  const auto &a = parts.contact.step_forces(), &b = parts.rigid.step_forces();
+  force_sum.resize(b.size());
+  for (std::size_t i = 0; i < b.size(); ++i)
+    force_sum[i] = (i < a.size() ? a[i] : Tensor<1, dim>()) + b[i];
+  return force_sum;
+}
+
+template <int dim>
 void RunOutput<dim>::after_step(const double external_work, const double dt,
                                 const double t)
 {
@@ -210,7 +223,7 @@ void RunOutput<dim>::after_step(const double external_work, const double dt,
   energy.track(energy.measure(parts.particles, parts.materials, parts.ranks), false);
   peak_force.update(parts.constraints);
   // Every step counts towards the contact forces' means, with contact or not.
-  contact_means.book(parts.contact.step_forces(), dt);
+  contact_means.book(body_forces(), dt);
   const SceneState<dim> state = step_state(t, dt);
   parts.scene->observe(state);
   std::string reason = parts.scene->finished(state);

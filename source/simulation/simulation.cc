@@ -29,6 +29,7 @@ void Simulation<dim>::declare_parameters(ParameterHandler &prm,
   Bodies<dim>::declare_parameters(prm, counts.bodies);
   NodeConstraints<dim>::declare_parameters(prm, counts.constraints);
   BodyContact<dim>::declare_parameters(prm);
+  RigidSurfaces<dim>::declare_parameters(prm);
   RunOutput<dim>::declare_parameters(prm, counts.probes);
 }
 
@@ -64,7 +65,9 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
   for (const double m : parts.particles.mass)
     min_mass = std::min(min_mass, m);
   stepper.set_up(dt, 1e-12 * min_mass, crack_reach, particle_spacing);
+  parts.rigid.set_reference_step(clock.wave_step());
   distribute();
+  parts.rigid.seat(parts.particles, parts.parameters.end_time, parts.grid.min_spacing());
   max_speed = stepper.fastest_particle();
 }
 
@@ -189,6 +192,13 @@ void Simulation<dim>::setup_bodies_and_contact(ParameterHandler &prm,
   parts.bodies.parse_parameters(prm, counts.bodies, set_names);
   parts.contact.parse_parameters(prm, parts.parameters.thickness,
                                  parts.shape_function->support_radius(parts.grid));
+  {
+    // A body's outermost particles sit this far inside a face of their cells.
+    std::vector<double> depth;
+    for (const auto &placement : body_placements)
+      depth.push_back(placement.first.front() * parts.grid.min_spacing());
+    parts.rigid.parse_parameters(prm, parts.bodies, depth, parts.grid.min_spacing());
+  }
   if (parts.bodies.any_prescribed())
   {
     parts.transfer.set_prescribed_bodies(parts.bodies.prescribed_flags());
@@ -213,6 +223,7 @@ void Simulation<dim>::distribute()
   parts.fracture.set_ranks(parts.ranks);
   parts.constraints.set_ranks(parts.ranks);
   parts.contact.set_ranks(parts.ranks);
+  parts.rigid.set_ranks(parts.ranks);
   if (!parts.ranks.distributed())
     return;
   // The halo holds what one step of an owned particle reads (halo_reach.h).

@@ -47,6 +47,11 @@ public:
 
   bool any_prescribed() const { return n_prescribed > 0; }
   bool prescribed(const unsigned int body) const { return flags[body] != 0; }
+  /// True if @p body is a rigid exact surface (Surface = exact, no particles).
+  bool exact(const unsigned int body) const { return exact_flags[body] != 0; }
+  bool any_exact() const;
+  /// True if some prescribed body is made of particles (it needs multi-field contact).
+  bool any_prescribed_particles() const;
   /// Per body: 1 if it moves as prescribed.
   const std::vector<std::uint8_t> &prescribed_flags() const { return flags; }
   /// The "Body N/Prescribed velocity" of the first prescribed body (for messages).
@@ -66,16 +71,17 @@ public:
    * history.csv: per named body force_<name>_x ... and force_<name>_mean_x ... (with
    * @p forces: the contact force it received, over the force window and over the
    * output interval) and displacement_<name>_x ... (its particles' mass-weighted mean
-   * displacement).
+   * displacement; for a rigid exact surface, @p rigid_displacements).
    */
   void write_header(std::ostream &out, bool forces) const;
   void write_row(std::ostream &out, const ParticleStore<dim> &particles,
                  const std::vector<Tensor<1, dim>> *forces,
-                 const std::vector<Tensor<1, dim>> *mean_forces) const;
+                 const std::vector<Tensor<1, dim>> *mean_forces,
+                 const std::vector<Tensor<1, dim>> *rigid_displacements = nullptr) const;
 
 private:
   std::vector<std::string> names_;
-  std::vector<std::uint8_t> flags;
+  std::vector<std::uint8_t> flags, exact_flags;
   unsigned int n_prescribed = 0;
   std::vector<std::unique_ptr<Functions::ParsedFunction<dim>>> functions;
   std::vector<std::string> entries;

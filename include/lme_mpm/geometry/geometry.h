@@ -26,6 +26,17 @@ public:
   virtual ~Geometry()                            = default;
   virtual bool inside(const Point<dim> &x) const = 0;
   virtual BoundingBox<dim> bounding_box() const  = 0;
+  /**
+   * The signed distance from @p x to the shape's surface (negative inside) and the
+   * outward unit normal at the nearest surface point. A body whose `Surface` is
+   * `exact` touches the others through it (RigidSurfaces); shapes without an exact
+   * surface return false and set nothing.
+   */
+  virtual bool signed_distance(const Point<dim> & /*x*/, double & /*distance*/,
+                               Tensor<1, dim> & /*normal*/) const
+  {
+    return false;
+  }
 };
 
 /// What GeometryRegistry keeps of one shape.

@@ -79,6 +79,8 @@ private:
     const std::vector<Tensor<1, dim>> *mass_times_acceleration = nullptr;
     /// The work the prescribed bodies did on the others through contact (J).
     double contact_work = 0;
+    /// The rigid exact surfaces' work on the particles (J, over the ranks).
+    double rigid_work = 0;
   };
 
   void initialise(double t, unsigned int step);

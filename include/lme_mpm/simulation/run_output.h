@@ -172,6 +172,10 @@ private:
   PeakForce<dim> peak_force;
   /// The bodies' contact forces, averaged over each output interval.
   ForceMeans<dim> contact_means;
+  /// The contact force each body received in the last step: multi-field contact's
+  /// and the rigid surfaces'.
+  const std::vector<Tensor<1, dim>> &body_forces();
+  std::vector<Tensor<1, dim>> force_sum;
   Probes<dim> probes;
   ExactSolution<dim> exact;
   std::unique_ptr<ParticleOutput<dim>> particle_output;

@@ -41,6 +41,11 @@ public:
   NodalFields<dim> &nodes() { return fields; }
   const NodalFields<dim> &nodes() const { return fields; }
   const Connectivity<dim> &connectivity() const { return conn; }
+  /// The displacement rate at particle @p p (after the predictor).
+  Tensor<1, dim> rate_at(const std::size_t p) const
+  {
+    return interpolate(fields.rate, p);
+  }
   Connectivity<dim> &connectivity() { return conn; }
   /// Threads the scatter runs on (fixed when the transfer is built).
   unsigned int threads() const { return n_threads; }
