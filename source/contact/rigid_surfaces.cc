@@ -75,13 +75,16 @@ void RigidSurfaces<dim>::parse_parameters(ParameterHandler &prm,
       continue;
     const std::string section = input::subsection_name("Body", b);
     prm.enter_subsection(section);
-    const std::string text = prm.get("Shape");
+    const std::string text = prm.get("Shape"), holes = prm.get("Holes");
     prm.leave_subsection();
+    const auto &shapes = GeometryRegistry<dim>::instance();
     Surface s;
     s.body      = b;
-    s.shape     = GeometryRegistry<dim>::instance().create(text, section + "/Shape");
+    s.shape     = shapes.create(text, section + "/Shape");
     s.box       = s.shape->bounding_box();
     s.reference = s.box.center();
+    for (const auto &h : input::split(holes, ';'))
+      s.holes.push_back(shapes.create(h, section + "/Holes"));
     double phi;
     Tensor<1, dim> normal;
     AssertThrow(s.shape->signed_distance(s.reference, phi, normal),
@@ -89,6 +92,11 @@ void RigidSurfaces<dim>::parse_parameters(ParameterHandler &prm,
                             "'" + text +
                                 "' has no exact surface for Surface = exact: use a "
                                 "rectangle, disc or cylinder"));
+    for (const auto &h : s.holes)
+      AssertThrow(h->signed_distance(s.reference, phi, normal),
+                  ExcBadInput(section + "/Holes",
+                              "a hole of a body with Surface = exact must be a "
+                              "rectangle, disc or cylinder"));
     surfaces.push_back(std::move(s));
   }
   displacement.assign(n, Tensor<1, dim>());
@@ -148,7 +156,7 @@ double RigidSurfaces<dim>::apply(GridTransfer<dim> &transfer,
       const Point<dim> y        = x + dt * rate - shift[i];
       double phi;
       Tensor<1, dim> n;
-      s.shape->signed_distance(y, phi, n);
+      s.distance(y, phi, n);
       const double r_p   = radius[body];
       const double depth = r_p - phi;
       if (depth <= 0)
@@ -200,27 +208,83 @@ template <int dim>
 void RigidSurfaces<dim>::seat(const ParticleStore<dim> &particles, const double end_time,
                               const double h_min)
 {
-  if (!seat_surfaces)
-    return;
   for (const Surface &s : surfaces)
   {
-    const Tensor<1, dim> v = bodies->velocity(s.body, s.reference, end_time);
-    if (!(v.norm() > 0))
+    // The overlaps at the start: their depth over the particle's radius, and the
+    // surface's mean normal there.
+    std::vector<double> sums(dim + 1, 0.0);
+    double phi;
+    Tensor<1, dim> n;
+    for (std::size_t p = 0; p < particles.size(); ++p)
+    {
+      if (bodies->prescribed(particles.body_id[p]) || particles.ghost[p])
+        continue;
+      const double r_p = radius[particles.body_id[p]];
+      s.distance(particles.position[p] - seating[s.body], phi, n);
+      if (phi >= r_p)
+        continue;
+      sums[dim] = std::max(sums[dim], (r_p - phi) / r_p);
+      for (unsigned int d = 0; d < dim; ++d)
+        sums[d] += n[d];
+    }
+    const double deepest = ranks ? ranks->max(sums[dim]) : sums[dim];
+    sums[dim]            = 0;
+    if (ranks)
+      ranks->sum(sums);
+    const std::string section = input::subsection_name("Body", s.body);
+    AssertThrow(seat_surfaces || deepest <= 0.1,
+                ExcBadInput(section + "/Shape",
+                            "the rigid surface overlaps particles of the other bodies "
+                            "at the start by up to " +
+                                format_double(deepest) +
+                                " of their radius (more than 0.1): a curved body's "
+                                "particles lie near its shape; move the shape, or set "
+                                "Contact/Seat rigid surfaces = true"));
+    if (!seat_surfaces)
       continue;
-    const Tensor<1, dim> d = v / v.norm();
-    // Sphere tracing on the signed distance: each particle's travel against d until
-    // its domain touches the surface, given up beyond a cell.
+    // The direction the surface advances in: its velocity's, or for a surface at
+    // rest, towards the particles it overlaps.
+    Tensor<1, dim> d = bodies->velocity(s.body, s.reference, end_time);
+    if (!(d.norm() > 0))
+      for (unsigned int k = 0; k < dim; ++k)
+        d[k] = sums[k];
+    if (!(d.norm() > 0))
+      continue;
+    d /= d.norm();
+    // Back off: each overlapping particle's travel with d (relative to the surface)
+    // until its domain clears, at most a cell.
+    double back = 0;
+    for (std::size_t p = 0; p < particles.size(); ++p)
+    {
+      if (bodies->prescribed(particles.body_id[p]))
+        continue;
+      const double r_p   = radius[particles.body_id[p]];
+      const Point<dim> x = particles.position[p] - seating[s.body];
+      double t           = 0;
+      for (unsigned int k = 0; k < 256 && t < h_min; ++k)
+      {
+        s.distance(x + t * d, phi, n);
+        if (phi - r_p >= 0)
+          break;
+        t += std::max(r_p - phi, 1e-3 * h_min);
+      }
+      back = std::max(back, std::min(t, h_min));
+    }
+    if (ranks)
+      back = ranks->max(back);
+    seating[s.body] -= back * d;
+    // Forward: sphere tracing on the signed distance, each particle's travel against
+    // d until its domain touches the surface, given up beyond a cell.
     double travel = h_min;
     for (std::size_t p = 0; p < particles.size(); ++p)
     {
       if (bodies->prescribed(particles.body_id[p]))
         continue;
       const Point<dim> x = particles.position[p] - seating[s.body];
-      double t           = 0, phi;
-      Tensor<1, dim> n;
+      double t           = 0;
       for (unsigned int k = 0; k < 64 && t < travel; ++k)
       {
-        s.shape->signed_distance(x - t * d, phi, n);
+        s.distance(x - t * d, phi, n);
         const double gap = phi - radius[particles.body_id[p]];
         if (gap < 1e-9 * h_min)
         {

@@ -51,7 +51,8 @@ struct BodyEntries
              "others. 'particles': it is filled with particles and touches the others "
              "through multi-field contact at the grid's nodes. 'exact': it has no "
              "particles; the exact surface of its Shape (rectangle, disc or cylinder, "
-             "no Holes) moves rigidly and pushes each particle of the other bodies by "
+             "minus its Holes of the same kinds) moves rigidly and pushes each particle "
+             "of the other bodies by "
              "a penalty on the gap between the particle's domain and the surface, so "
              "that the contact grows continuously inside a cell (doc/contact.md). "
              "Needs a Prescribed velocity; not Contact/Type = multi-field.");
@@ -213,10 +214,9 @@ void place_particles(BodyInput<dim> &body, const unsigned int b,
   // A rigid exact surface has no particles and may reach outside the grid.
   if (body.exact)
   {
-    AssertThrow(body.holes.empty() && body.zones.empty(),
+    AssertThrow(body.zones.empty(),
                 ExcBadInput(placement.section + "/Surface",
-                            "'exact' takes the Shape alone: leave Holes and Material "
-                            "zones empty"));
+                            "'exact' is one rigid surface: leave Material zones empty"));
     return;
   }
   const auto box = check_inside_grid(body, grid);

@@ -108,6 +108,12 @@ TEST(RigidSurfaces, ExactSurfaceNeedsAPrescribedVelocityAndAnExactShape)
   m = lme_mpm_test::run_error(prm, {"Body 2/Shape=half_disc(0.03, 0.02, 0.01, 90)"}, dir);
   EXPECT_NE(m.find("Body 2/Shape"), std::string::npos) << m;
   EXPECT_NE(m.find("rectangle, disc or cylinder"), std::string::npos) << m;
+  // The Brazilian's strips are cut to the disc's circle, nearer its particles than
+  // their radius: without seating the run would start with a jolt.
+  m = lme_mpm_test::run_error(lme_mpm_test::scene("brazilian.prm"),
+                              {"Body 2/Surface=exact", "Body 3/Surface=exact"}, dir);
+  EXPECT_NE(m.find("Body 2/Shape"), std::string::npos) << m;
+  EXPECT_NE(m.find("Contact/Seat rigid surfaces"), std::string::npos) << m;
   m = lme_mpm_test::run_error(prm, {"Contact/Surface penalty factor=1.5"}, dir);
   EXPECT_NE(m.find("Contact/Surface penalty factor"), std::string::npos) << m;
   m = lme_mpm_test::run_error(prm, {"Contact/Surface damping ratio=-1"}, dir);

@@ -99,9 +99,26 @@ private:
   {
     unsigned int body = 0;
     std::unique_ptr<Geometry<dim>> shape;
+    /// The body's Holes (a strip's seat cut to the specimen's curve).
+    std::vector<std::unique_ptr<Geometry<dim>>> holes;
     BoundingBox<dim> box;
     /// Where the prescribed velocity is evaluated (the shape's centre at t = 0).
     Point<dim> reference;
+
+    /// The shape minus its holes: max(phi_shape, -phi_hole) and its normal (exact
+    /// in sign, the distance bounded by the true one near the surface).
+    void distance(const Point<dim> &x, double &phi, Tensor<1, dim> &normal) const
+    {
+      shape->signed_distance(x, phi, normal);
+      double phi_h;
+      Tensor<1, dim> n_h;
+      for (const auto &h : holes)
+      {
+        h->signed_distance(x, phi_h, n_h);
+        if (-phi_h > phi)
+          phi = -phi_h, normal = -n_h;
+      }
+    }
   };
 
   const Bodies<dim> *bodies   = nullptr;
