@@ -52,6 +52,7 @@ void Bodies<dim>::parse_parameters(ParameterHandler &prm, const unsigned int n_b
   names_.assign(n_bodies, "");
   flags.assign(n_bodies, 0);
   exact_flags.assign(n_bodies, 0);
+  factor.assign(n_bodies, 1.0);
   functions.clear();
   functions.resize(n_bodies);
   entries.assign(n_bodies, "");
@@ -143,8 +144,8 @@ std::string Bodies<dim>::first_prescribed_entry() const
 }
 
 template <int dim>
-Tensor<1, dim> Bodies<dim>::velocity(const unsigned int b, const Point<dim> &x,
-                                     const double t) const
+Tensor<1, dim> Bodies<dim>::entry_velocity(const unsigned int b, const Point<dim> &x,
+                                           const double t) const
 {
   if (constant[b])
     return constant_value[b];

@@ -47,6 +47,7 @@ void Simulation<dim>::serialize(Archive &ar)
   parts.constraints.serialize(ar);
   parts.contact.serialize(ar);
   parts.rigid.serialize(ar);
+  parts.control.serialize(ar);
   parts.scene->serialize(ar);
   parts.particles.for_each_field([&](auto &field) { ar(field); });
   auto lines = parts.cracks.polylines();

@@ -72,6 +72,22 @@ void RunOutput<dim>::add_columns()
          parts.contact.add_results(r);
          parts.rigid.add_results(r);
        }});
+  columns.push_back(
+      {[&p](std::ostream &out)
+       {
+         p.gauges.write_header(out);
+         p.control.write_header(out);
+       },
+       [&p](std::ostream &out, const ParticleStore<dim> &all, double)
+       {
+         p.gauges.write_row(out, all);
+         p.control.write_row(out);
+       },
+       [this](std::map<std::string, double> &r, const ParticleStore<dim> &, double)
+       {
+         parts.control.add_results(r);
+         load_test.add_results(r);
+       }});
   columns.push_back({[this](std::ostream &out) { probes.write_header(out); },
                      [this](std::ostream &out, const ParticleStore<dim> &all, double)
                      { probes.write_row(out, all); },
@@ -94,6 +110,7 @@ void RunOutput<dim>::declare_parameters(ParameterHandler &prm,
                                         const unsigned int n_probes)
 {
   Probes<dim>::declare_parameters(prm, n_probes);
+  OpeningGauges<dim>::declare_parameters(prm);
   ExactSolution<dim>::declare_parameters(prm);
 }
 
@@ -104,6 +121,7 @@ void RunOutput<dim>::parse_parameters(ParameterHandler &prm, const unsigned int 
   if (parts.bodies.any_prescribed())
     energy.set_excluded_bodies(parts.bodies.prescribed_flags());
   peak_force.parse(parts.parameters.peak_force_set, parts.constraints);
+  load_test.set_active(parts.control.has_devices() && parts.contact_forces());
   contact_means.reset(parts.bodies.size(), parts.parameters.force_window);
   probes.parse_parameters(prm, n_probes);
   exact.parse_parameters(prm);
@@ -220,10 +238,13 @@ void RunOutput<dim>::after_step(const double external_work, const double dt,
                                 const double t)
 {
   energy.add_external_work(external_work);
-  energy.track(energy.measure(parts.particles, parts.materials, parts.ranks), false);
+  const Energies e = energy.measure(parts.particles, parts.materials, parts.ranks);
+  energy.track(e, false);
   peak_force.update(parts.constraints);
   // Every step counts towards the contact forces' means, with contact or not.
   contact_means.book(body_forces(), dt);
+  if (load_test.active())
+    load_test.observe(parts.control.device_load(contact_means.current(), t), e, t);
   const SceneState<dim> state = step_state(t, dt);
   parts.scene->observe(state);
   std::string reason = parts.scene->finished(state);
@@ -390,6 +411,15 @@ RunSummary RunOutput<dim>::summarise(const double wall, const unsigned int steps
   for (const auto &c : columns)
     if (c.results)
       c.results(results, all, t);
+  {
+    // Against G_F times the crack's area, which a scene's fracture_energy_ratio
+    // divides the dissipated energy by.
+    const auto w = results.find("work_of_fracture"),
+               d = results.find("dissipated_energy"),
+               f = results.find("fracture_energy_ratio");
+    if (w != results.end() && d != results.end() && f != results.end() && d->second > 0)
+      results["work_of_fracture_ratio"] = w->second * f->second / d->second;
+  }
   for (const auto &s : parts.shape_function->statistics())
     results["shape_function_" + s.first] = s.second;
   // What the ranks hold now, against what the run started with (migration must
@@ -485,6 +515,7 @@ void RunOutput<dim>::serialize(Archive &ar)
   AssertThrow(contact_means.peak().size() == parts.bodies.size(),
               ExcMessage("the checkpoint holds another number of bodies"));
   exact.serialize(ar);
+  load_test.serialize(ar);
   // Only rank 0 writes history.csv.
   std::uint64_t history_size = ar.loading() || !writes_files() ? 0 : history.size();
   ar(history_size);

@@ -30,6 +30,7 @@ void Simulation<dim>::declare_parameters(ParameterHandler &prm,
   NodeConstraints<dim>::declare_parameters(prm, counts.constraints);
   BodyContact<dim>::declare_parameters(prm);
   RigidSurfaces<dim>::declare_parameters(prm);
+  LoadingControl<dim>::declare_parameters(prm);
   RunOutput<dim>::declare_parameters(prm, counts.probes);
 }
 
@@ -68,6 +69,8 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
   parts.rigid.set_reference_step(clock.wave_step());
   distribute();
   parts.rigid.seat(parts.particles, parts.parameters.end_time, parts.grid.min_spacing());
+  parts.gauges.check(parts.particles, &parts.ranks);
+  parts.control.set_up(parts.particles, parts.materials.max_wave_speed(), &parts.ranks);
   max_speed = stepper.fastest_particle();
 }
 
@@ -199,6 +202,9 @@ void Simulation<dim>::setup_bodies_and_contact(ParameterHandler &prm,
       depth.push_back(placement.first.front() * parts.grid.min_spacing());
     parts.rigid.parse_parameters(prm, parts.bodies, depth, parts.grid.min_spacing());
   }
+  parts.gauges.parse_parameters(prm, parts.grid.min_spacing());
+  parts.gauges.set_excluded_bodies(parts.bodies.prescribed_flags());
+  parts.control.parse_parameters(prm, parts.bodies, parts.gauges);
   if (parts.bodies.any_prescribed())
   {
     parts.transfer.set_prescribed_bodies(parts.bodies.prescribed_flags());
@@ -252,6 +258,8 @@ void Simulation<dim>::step()
   t = clock.at_end() ? clock.end_time() : t + dt;
   ++step_count;
   max_speed = result.max_speed;
+  // The servo reads its gauge after the step and sets the devices' speed for the next.
+  parts.control.update(parts.particles, &parts.ranks, t, dt);
   output.after_step(result.external_work, dt, t);
   guard.stop_if_unstable(result.first_bad, step_count, t);
   stepper.exchange_particles();

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <lme_mpm/contact/body_contact.h>
+#include <lme_mpm/geometry/particle_generator.h>
 #include <lme_mpm/output/force_means.h>
 #include <lme_mpm/output/moving_mean.h>
 
@@ -43,6 +44,8 @@ struct TwoBlocks
     for (std::size_t p = 0; p < particles.size(); ++p)
       particles.id[p] = p;
     dealii::ParameterHandler prm;
+    // As the run declares them: the shape's entries (Surface among them) and the rules.
+    ParticleGenerator<2>::declare_parameters(prm, 2);
     Bodies<2>::declare_parameters(prm, 2);
     BodyContact<2>::declare_parameters(prm);
     ShapeFunctionRegistry<2>::instance().declare_all(prm);

@@ -57,10 +57,20 @@ public:
   /// The "Body N/Prescribed velocity" of the first prescribed body (for messages).
   std::string first_prescribed_entry() const;
 
-  /// The prescribed velocity of @p body at @p x and @p t; throws ExcBadInput naming
-  /// the entry where it is not finite.
-  Tensor<1, dim> velocity(unsigned int body, const Point<dim> &x, double t) const;
-  /// Its time derivative, by a central difference of half-width @p h.
+  /// The prescribed velocity of @p body at @p x and @p t, times its speed factor;
+  /// throws ExcBadInput naming the entry where it is not finite.
+  Tensor<1, dim> velocity(unsigned int body, const Point<dim> &x, double t) const
+  {
+    return factor[body] * entry_velocity(body, x, t);
+  }
+  /// The velocity its entry gives, without the speed factor.
+  Tensor<1, dim> entry_velocity(unsigned int body, const Point<dim> &x, double t) const;
+  /// Scales @p body's prescribed velocity from now on (a servo, LoadingControl; 1
+  /// unless set).
+  void set_speed_factor(const unsigned int body, const double f) { factor[body] = f; }
+  double speed_factor(const unsigned int body) const { return factor[body]; }
+  /// Its time derivative, by a central difference of half-width @p h (the speed
+  /// factor held).
   Tensor<1, dim> acceleration(unsigned int body, const Point<dim> &x, double t,
                               double h) const;
   /// Gives the particles of prescribed bodies their prescribed velocity at @p t (their
@@ -82,6 +92,7 @@ public:
 private:
   std::vector<std::string> names_;
   std::vector<std::uint8_t> flags, exact_flags;
+  std::vector<double> factor;
   unsigned int n_prescribed = 0;
   std::vector<std::unique_ptr<Functions::ParsedFunction<dim>>> functions;
   std::vector<std::string> entries;

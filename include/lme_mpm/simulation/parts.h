@@ -4,6 +4,7 @@
 #include <lme_mpm/boundary/node_constraints.h>
 #include <lme_mpm/contact/body_contact.h>
 #include <lme_mpm/contact/crack_face_contact.h>
+#include <lme_mpm/contact/loading_control.h>
 #include <lme_mpm/contact/rigid_surfaces.h>
 #include <lme_mpm/distributed/decomposition.h>
 #include <lme_mpm/fracture/crack_set.h>
@@ -55,6 +56,8 @@ struct SimulationParts
   BodyContact<dim> contact;
   /// Prescribed bodies with Surface = exact.
   RigidSurfaces<dim> rigid;
+  OpeningGauges<dim> gauges;
+  LoadingControl<dim> control;
 
   /// True if bodies receive contact forces (multi-field contact or rigid surfaces).
   bool contact_forces() const { return contact.active() || rigid.active(); }

@@ -11,6 +11,7 @@
 #include <lme_mpm/output/force_means.h>
 #include <lme_mpm/output/grid_output.h>
 #include <lme_mpm/output/history_file.h>
+#include <lme_mpm/output/load_test.h>
 #include <lme_mpm/output/particle_output.h>
 #include <lme_mpm/output/peak_force.h>
 #include <lme_mpm/output/probes.h>
@@ -170,6 +171,7 @@ private:
 
   EnergyBalance<dim> energy;
   PeakForce<dim> peak_force;
+  LoadTest load_test;
   /// The bodies' contact forces, averaged over each output interval.
   ForceMeans<dim> contact_means;
   /// The contact force each body received in the last step: multi-field contact's
