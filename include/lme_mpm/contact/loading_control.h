@@ -29,7 +29,7 @@ namespace lme_mpm
  * with V the speed of the first device's prescribed velocity at the origin, e = w* -
  * w the opening's lag behind the target w* (w* grows by r dt and is kept within
  * [w - 2 r T, w + r T], so that a saturated device does not wind up a lag it would
- * later race to close), T the response time ("Response time", by default 20 transit
+ * later race to close), T the response time ("Response time", by default 5 transit
  * times of the P wave across the gauged bodies: slow against the specimen's ringing,
  * fast against the test) and g the gain dw/dtravel, estimated as the larger of the
  * secant w / travel and the tangent from the step increments, least squares with a
@@ -52,7 +52,7 @@ public:
   void parse_parameters(ParameterHandler &prm, Bodies<dim> &bodies,
                         const OpeningGauges<dim> &gauges);
   /**
-   * Sets the response time when the entry is 0: 20 times the P-wave transit time
+   * Sets the response time when the entry is 0: 5 times the P-wave transit time
    * across the bounding box of the free bodies' particles (@p wave_speed the fastest
    * material's), summed over @p ranks (null on one rank).
    */
