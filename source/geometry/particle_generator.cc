@@ -36,6 +36,13 @@ void for_each_index(const std::array<unsigned int, dim> &lo,
   }
 }
 
+/// A body's Shape before the file sets it.
+template <int dim>
+const char *default_shape_text()
+{
+  return dim == 2 ? "rectangle(0, 0, 1, 1)" : "rectangle(0, 0, 0, 1, 1, 1)";
+}
+
 /// The entries of one "Body N", listed once for declaring and reading; the
 /// initial velocity is a ParsedFunction subsection beside them.
 template <int dim>
@@ -58,9 +65,7 @@ struct BodyEntries
              "Needs a Prescribed velocity; not Contact/Type = multi-field.");
     list.add("Material", material, "1", Patterns::Integer(1),
              "Number N of the 'Material N' the body is made of.");
-    list.add("Shape", shape,
-             dim == 2 ? "rectangle(0, 0, 1, 1)" : "rectangle(0, 0, 0, 1, 1, 1)",
-             Patterns::Anything(),
+    list.add("Shape", shape, default_shape_text<dim>(), Patterns::Anything(),
              "Region the body fills: " +
                  GeometryRegistry<dim>::instance().documentation());
     list.add("Holes", holes, "", Patterns::Anything(),
@@ -115,6 +120,8 @@ struct BodyInput
   bool uniform = false;
   /// Surface = exact: a rigid surface, no particles.
   bool exact = false;
+  /// Shape left at its declared default: usually a body the file never describes.
+  bool default_shape = false;
   std::unique_ptr<Functions::ParsedFunction<dim>> velocity;
 };
 
@@ -136,7 +143,8 @@ BodyInput<dim> read_body(ParameterHandler &prm, const std::string &section,
               ExcBadInput(section + "/Material",
                           "must be between 1 and Problem/Number of materials = " +
                               std::to_string(n_materials)));
-  body.shape = geometries.create(in.shape, section + "/Shape");
+  body.default_shape = input::trim(in.shape) == default_shape_text<dim>();
+  body.shape         = geometries.create(in.shape, section + "/Shape");
   for (const auto &h : input::split(in.holes, ';'))
     body.holes.push_back(geometries.create(h, section + "/Holes"));
   for (const auto &z : input::split(in.zones, ';'))
@@ -175,13 +183,24 @@ std::pair<Point<dim>, Point<dim>> check_inside_grid(const BodyInput<dim> &body,
   const double tol = 1e-9 * (grid.upper_corner() - grid.lower_corner()).norm();
   const auto box   = body.shape->bounding_box().get_boundary_points();
   for (unsigned int d = 0; d < dim; ++d)
-    if (box.first[d] > -1e299)
-      AssertThrow(box.first[d] >= grid.lower_corner()[d] - tol &&
-                      box.second[d] <= grid.upper_corner()[d] + tol,
-                  ExcBadInput(body.placement.section + "/Shape",
-                              std::string("the body reaches outside the background "
-                                          "grid along ") +
-                                  "xyz"[d]));
+    if (box.first[d] > -1e299 && !(box.first[d] >= grid.lower_corner()[d] - tol &&
+                                   box.second[d] <= grid.upper_corner()[d] + tol))
+    {
+      const std::string &section = body.placement.section;
+      std::ostringstream msg;
+      if (body.default_shape)
+        msg << "is left at its default '" << default_shape_text<dim>()
+            << "', which lies outside the grid: 'Problem/Number of bodies' asks for a '"
+            << section << "' that the file does not describe (give it a subsection "
+            << "with a Shape, or lower the number of bodies)";
+      else
+        msg << "the body spans " << box.first[d] << " to " << box.second[d] << " m along "
+            << "xyz"[d] << ", beyond the background grid's " << grid.lower_corner()[d]
+            << " to " << grid.upper_corner()[d]
+            << " m ('Grid/Lower corner' and 'Grid/Upper corner'): enlarge the grid or "
+            << "move the body";
+      throw ExcBadInput(section + "/Shape", msg.str());
+    }
   return box;
 }
 

@@ -2,6 +2,7 @@
 
 #include <deal.II/fe/fe_q.h>
 
+#include <lme_mpm/base/format.h>
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/base/memory.h>
 #include <lme_mpm/base/parameters.h>
@@ -89,6 +90,17 @@ void BackgroundGrid<dim>::parse_parameters(ParameterHandler &prm)
   const Point<dim> lo = input::parse_point<dim>(in.lower, "Grid/Lower corner");
   const Point<dim> hi = input::parse_point<dim>(in.upper, "Grid/Upper corner");
   const double h      = in.cell_size;
+  {
+    bool uniform_somewhere = false;
+    for (unsigned int d = 0; d < dim; ++d)
+      uniform_somewhere |= input::trim(in.steps[d]).empty();
+    if (uniform_somewhere)
+      AssertThrow(std::isfinite(h) && h > 0,
+                  ExcBadInput("Grid/Cell size",
+                              "must be positive (got " + format_double(h) +
+                                  " m); it is used along every direction without "
+                                  "'Grid/Step sizes'"));
+  }
   // The size of the grid before any of it is allocated: a tiny cell size must stop
   // with what it would need, not exhaust the machine.
   {
@@ -130,11 +142,21 @@ void BackgroundGrid<dim>::parse_parameters(ParameterHandler &prm)
     if (steps[d].empty())
     {
       const double n = (hi[d] - lo[d]) / h;
-      AssertThrow(std::abs(n - std::round(n)) < 1e-6 * std::max(1.0, n) &&
-                      std::round(n) >= 1,
-                  ExcBadInput("Grid/Cell size",
-                              std::string("the extent along ") + axis_name[d] +
-                                  " is not a whole number of cells of this size"));
+      if (!(std::abs(n - std::round(n)) < 1e-6 * std::max(1.0, n) && std::round(n) >= 1))
+      {
+        // Name the two whole numbers of cells either side of the request, so the
+        // user can pick one (or move 'Grid/Upper corner').
+        const double extent = hi[d] - lo[d];
+        const double fewer  = std::max(1.0, std::floor(n));
+        std::ostringstream msg;
+        msg << h << " m does not divide the extent along " << axis_name[d] << " ("
+            << extent
+            << " m from 'Grid/Lower corner' to 'Grid/Upper corner') into a whole "
+            << "number of cells (" << n << "); the nearest sizes that do are "
+            << extent / (fewer + 1) << " m (" << fewer + 1 << " cells) and "
+            << extent / fewer << " m (" << fewer << " cells)";
+        throw ExcBadInput("Grid/Cell size", msg.str());
+      }
       steps[d].assign(static_cast<std::size_t>(std::round(n)),
                       (hi[d] - lo[d]) / std::round(n));
     }

@@ -113,6 +113,10 @@ public:
     const std::string disc_shape = cylinder_shape<dim>(cx, cy, R, length);
     // Height above the centre where the disc's surface meets x = cx -+ b/2.
     const double rise = std::sqrt(R * R - 0.25 * b * b);
+    require_inside_grid(writer, cx - R, cy - R, cx + R, cy + R,
+                        entry("Diameter") + "' and '" + entry("Centre"),
+                        "the disc of diameter " + number(diameter) + " m about (" +
+                            number(cx) + ", " + number(cy) + ")");
     writer.set_body(disc, "Shape", disc_shape, entry("Disc"));
     if (zone_depth > 0)
     {

@@ -21,6 +21,30 @@ std::string number(const double x)
   return s.str();
 }
 
+void require_inside_grid(const EntryWriter &writer, const double x0, const double y0,
+                         const double x1, const double y1, const std::string &owner,
+                         const std::string &what)
+{
+  const auto lo =
+      input::parse_doubles(writer.get("Grid/Lower corner"), "Grid/Lower corner");
+  const auto hi =
+      input::parse_doubles(writer.get("Grid/Upper corner"), "Grid/Upper corner");
+  if (lo.size() < 2 || hi.size() < 2)
+    return; // the grid's own parsing names these entries
+  const double box_lo[2] = {x0, y0}, box_hi[2] = {x1, y1};
+  for (unsigned int d = 0; d < 2; ++d)
+  {
+    const double tol = 1e-9 * std::max(1.0, std::abs(hi[d] - lo[d]));
+    if (box_lo[d] >= lo[d] - tol && box_hi[d] <= hi[d] + tol)
+      continue;
+    std::ostringstream msg;
+    msg << what << " spans " << box_lo[d] << " to " << box_hi[d] << " m along "
+        << "xy"[d] << ", beyond the background grid's " << lo[d] << " to " << hi[d]
+        << " m: enlarge 'Grid/Lower corner' and 'Grid/Upper corner' with it";
+    throw ExcBadInput(owner, msg.str());
+  }
+}
+
 void set_notch_crack(EntryWriter &writer, const std::string &body,
                      const std::string &polyline, const std::string &owner)
 {

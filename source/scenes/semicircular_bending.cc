@@ -130,6 +130,10 @@ public:
     // The half disc, curved side up (in 3D it fills the grid's z extent).
     const std::string half_disc =
         "half_disc(" + number(cx) + ", " + number(cy) + ", " + number(radius) + ", 90)";
+    require_inside_grid(writer, cx - radius, cy, cx + radius, cy + radius,
+                        entry("Radius") + "' and '" + entry("Flat edge centre"),
+                        "the half disc of radius " + number(radius) + " m from (" +
+                            number(cx) + ", " + number(cy) + ")");
     writer.set_body(specimen, "Shape", half_disc, entry("Specimen"));
     // The notch from the centre of the flat edge, up and towards -x by the angle.
     const std::string notch = "slot(" + number(cx) + ", " + number(cy) + ", " +

@@ -226,8 +226,14 @@ TimeStepping stable_time_step(const RunParameters<dim> &run, const double h_min,
   }
   else
   {
-    input::require_range(run.cfl, 0, run.max_cfl, false, "Time/CFL");
-    AssertThrow(run.cfl > 0, ExcBadInput("Time/CFL", "must be positive"));
+    if (!(run.cfl > 0 && run.cfl <= run.max_cfl))
+    {
+      std::ostringstream msg;
+      msg << "value " << run.cfl << " is outside the allowed range (0, " << run.max_cfl
+          << "], whose upper end is 'Time/Maximum CFL' (at most 2; explicit steps are "
+          << "unstable beyond about 1, doc/stability.md)";
+      throw ExcBadInput("Time/CFL", msg.str());
+    }
     ts.dt = run.cfl * dt_wave;
   }
   {

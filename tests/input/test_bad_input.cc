@@ -39,7 +39,9 @@ const std::vector<BadInput> bad_inputs = {
     {{"Time/End time=0"}, "Time/End time"},
     {{"Time/End time=-1"}, "Time/End time"},
     {{"Time/Time step=1"}, "exceeds the stability limit"},
-    {{"Time/CFL=1.5"}, "Time/CFL"},
+    {{"Time/CFL=1.5"},
+     "'Time/CFL': value 1.5 is outside the allowed range (0, 1], whose upper end is "
+     "'Time/Maximum CFL'"},
     {{"Time/CFL=0"}, "Time/CFL"},
     {{"Time/Maximum CFL=3"}, "Time/Maximum CFL"},
     {{"Material 1/linear elastic/Poisson's ratio=0.5"}, "Poisson's ratio"},
@@ -47,13 +49,20 @@ const std::vector<BadInput> bad_inputs = {
     {{"Material 1/linear elastic/Young's modulus=0"}, "Young's modulus"},
     {{"Material 1/Density=0"}, "Material 1/Density"},
     {{"Material 1/Model=plastic"}, "Material 1/Model"},
-    {{"Grid/Cell size=0.03"}, "Grid/Cell size"},
-    {{"Grid/Cell size=0"}, "Grid/Cell size"},
+    {{"Grid/Cell size=0.03"},
+     "'Grid/Cell size': 0.03 m does not divide the extent along x (1.25 m from "
+     "'Grid/Lower "
+     "corner' to 'Grid/Upper corner') into a whole number of cells (41.6667); the "
+     "nearest "
+     "sizes that do are 0.0297619 m (42 cells) and 0.0304878 m (41 cells)"},
+    {{"Grid/Cell size=0"}, "'Grid/Cell size': must be positive (got 0 m)"},
     {{"Grid/Upper corner=1, 1, 1"}, "Grid/Upper corner"},
     {{"Grid/Upper corner=-1, 0.1"}, "Grid/Upper corner"},
     {{"Grid/Step sizes x=10*0.1"}, "Grid/Step sizes x"},
     {{"Grid/Step sizes x=2.5*0.5"}, "Grid/Step sizes x"},
-    {{"Body 1/Shape=rectangle(0, 0, 2, 0.1)"}, "reaches outside the background grid"},
+    {{"Body 1/Shape=rectangle(0, 0, 2, 0.1)"},
+     "'Body 1/Shape': the body spans 0 to 2 m along x, beyond the background grid's 0 to "
+     "1.25 m ('Grid/Lower corner' and 'Grid/Upper corner')"},
     {{"Body 1/Shape=circle(0.5, 0.05, 0.01)"}, "unknown shape 'circle'"},
     {{"Body 1/Shape=disc(0.5, 0.05)"}, "'disc' takes 3 numbers"},
     {{"Body 1/Shape=disc(0.5, 0.05, -1)"}, "radius must be positive"},
@@ -83,7 +92,10 @@ const std::vector<BadInput> bad_inputs = {
     {{"Problem/Body force=0"}, "Problem/Body force"},
     {{"Problem/Body force ramp time=-1"}, "Problem/Body force ramp time"},
     {{"Problem/Plane assumption=axisymmetric"}, "Plane assumption"},
-    {{"Problem/Number of bodies=2"}, "Body 2/Shape"},
+    {{"Problem/Number of bodies=2"},
+     "'Body 2/Shape': is left at its default 'rectangle(0, 0, 1, 1)', which lies outside "
+     "the grid: 'Problem/Number of bodies' asks for a 'Body 2' that the file does not "
+     "describe"},
     {{"Problem/Dimension=4"}, "Problem/Dimension"},
     {{"Output/Output interval=-1"}, "Output/Output interval"},
     {{"Output/Verbosity=5"}, "Output/Verbosity"},

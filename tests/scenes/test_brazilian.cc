@@ -47,10 +47,20 @@ TEST(Brazilian, BadInputNamesTheEntry)
   EXPECT_NE(error({"Body 2/Prescribed velocity/Function expression=0; -1"})
                 .find("Body 2/Prescribed velocity"),
             std::string::npos);
-  // The disc and strips must fit the grid.
-  EXPECT_NE(
-      error({"Scene/brazilian/Centre=0.05, 0.1"}).find("outside the background grid"),
-      std::string::npos);
+  // The disc must fit the grid: the message names the scene's entries the user
+  // changes and the grid's corners, with both extents.
+  for (const auto &o :
+       {"Scene/brazilian/Centre=0.05, 0.1", "Scene/brazilian/Diameter=0.25"})
+  {
+    const std::string m = error({o});
+    EXPECT_NE(m.find("'Scene/brazilian/Diameter' and 'Scene/brazilian/Centre': the disc"),
+              std::string::npos)
+        << m;
+    EXPECT_NE(m.find("beyond the background grid's 0 to 0.2 m: enlarge 'Grid/Lower "
+                     "corner' and 'Grid/Upper corner'"),
+              std::string::npos)
+        << m;
+  }
 }
 
 TEST(MaterialZones, AWeakZoneInsideOneBodyIsWhereTheBarBreaks)

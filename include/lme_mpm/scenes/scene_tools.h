@@ -28,6 +28,15 @@ template <int dim>
 std::string ramped_velocity(double vx, double vy, double ramp);
 
 /**
+ * Throws naming scene entries @p owner (the ones that size and place @p what) unless
+ * the x-y box [x0, x1] x [y0, y1] lies within the grid's 'Grid/Lower corner' and
+ * 'Grid/Upper corner', so that a scene grown past its grid is blamed on the entry
+ * the user changed, with both extents.
+ */
+void require_inside_grid(const EntryWriter &writer, double x0, double y0, double x1,
+                         double y1, const std::string &owner, const std::string &what);
+
+/**
  * Writes the entries of an explicit, non-growing crack along @p polyline ("x0, y0, x1,
  * y1, ...") that cuts only the body named @p body: Cracks/Polylines, Cracks/Grow with
  * erosion = false and Cracks/Body, on behalf of scene entry @p owner (under the rule
