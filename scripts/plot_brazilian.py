@@ -5,22 +5,20 @@ final damage field of the first run, in one PNG.
     /usr/bin/python3 scripts/plot_brazilian.py output/brazilian --out brazilian.png
 
 Each argument is an output directory of prm/brazilian.prm (history.csv, summary.json,
-damage.csv). The load is force_top_y (N, for the run's thickness); the approach is
-displacement_bottom_y - displacement_top_y (the strips' mean displacements). The load
-axis is drawn as the nominal splitting stress 2 P / (pi D t) when --diameter and
---thickness are given (defaults: the scene's 0.15 m and 1 m).
+damage.csv, parameters.prm). The load is force_<top strip>_y, drawn as the nominal
+splitting stress 2 P / (pi D t); the approach is the strips' mean displacements'
+difference. D, t (Problem/Thickness in 2D, the scene's Length in 3D), the strips' names
+and the disc's tensile strength f_t (drawn as a line) are read from each run's own
+parameters.prm, so any disc is drawn to its own scale.
 """
 import argparse
 import csv
-import json
 import math
 import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from scene_plots import body_material, parameter, read_parameters, read_summary  # noqa: E402
 
 
 def read_columns(path, names):
@@ -34,34 +32,63 @@ def read_columns(path, names):
     return {n: [float(r[n]) for r in rows] for n in names}
 
 
+def geometry(run):
+    """The run's disc as its parameters.prm gives it: diameter D (m), thickness t (m),
+    the top and bottom strips' names and the disc material's tensile strength (Pa, or
+    None without eigensoftening)."""
+    v = read_parameters(run)
+    scene = "Scene/brazilian/"
+    if parameter(v, "Scene/Type", run) != "brazilian":
+        sys.exit("%s: Scene/Type is not 'brazilian'" % run)
+    D = parameter(v, scene + "Diameter", run)
+    t = (parameter(v, scene + "Length", run) if int(parameter(v, "Problem/Dimension", run)) == 3
+         else parameter(v, "Problem/Thickness", run))
+    m = body_material(v, parameter(v, scene + "Disc", run), run)
+    f_t = v.get("Material %d/Fracture/Tensile strength" % m)
+    model = v.get("Material %d/Fracture/Model" % m, "none")
+    return dict(diameter=D, thickness=t, top=parameter(v, scene + "Top strip", run),
+                bottom=parameter(v, scene + "Bottom strip", run),
+                tensile_strength=float(f_t) if f_t is not None and model != "none" else None)
+
+
+def curve(run):
+    """(approach in um, nominal stress in MPa, geometry()) of one run."""
+    g = geometry(run)
+    top, bottom = g["top"], g["bottom"]
+    h = read_columns(os.path.join(run, "history.csv"),
+                     ["force_%s_y" % top, "displacement_%s_y" % top,
+                      "displacement_%s_y" % bottom])
+    approach = [1e6 * (b - t) for t, b in zip(h["displacement_%s_y" % top],
+                                               h["displacement_%s_y" % bottom])]
+    nominal = 2 / (math.pi * g["diameter"] * g["thickness"])
+    stress = [1e-6 * nominal * p for p in h["force_%s_y" % top]]
+    return approach, stress, g
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("runs", nargs="+", help="output directories")
     ap.add_argument("--out", default="brazilian.png")
-    ap.add_argument("--diameter", type=float, default=0.15)
-    ap.add_argument("--thickness", type=float, default=1.0)
-    ap.add_argument("--tensile-strength", type=float, default=5.4e6,
-                    help="f_t (Pa), drawn as a line")
     args = ap.parse_args()
 
-    nominal = 2 / (math.pi * args.diameter * args.thickness)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
     fig, (ax, ad) = plt.subplots(1, 2, figsize=(11, 4.8))
+    strengths = set()
     for run in args.runs:
-        h = read_columns(os.path.join(run, "history.csv"),
-                         ["force_top_y", "displacement_top_y", "displacement_bottom_y"])
-        approach = [1e6 * (b - t) for t, b in zip(h["displacement_top_y"],
-                                                   h["displacement_bottom_y"])]
-        stress = [1e-6 * nominal * p for p in h["force_top_y"]]
-        label = os.path.basename(os.path.normpath(run))
-        summary = os.path.join(run, "summary.json")
-        if os.path.exists(summary):
-            with open(summary) as f:
-                s = json.load(f)
-            if s.get("splitting_strength") is not None:
-                label += " (peak %.2f MPa)" % (1e-6 * s["splitting_strength"])
+        approach, stress, g = curve(run)
+        label = os.path.basename(os.path.normpath(run)) + " (D %g mm)" % (1e3 * g["diameter"])
+        s = read_summary(run)
+        if s.get("splitting_strength") is not None:
+            label += ", peak %.2f MPa" % (1e-6 * s["splitting_strength"])
         ax.plot(approach, stress, label=label)
-    ax.axhline(1e-6 * args.tensile_strength, color="k", ls=":", lw=1, label="f_t")
+        if g["tensile_strength"] is not None:
+            strengths.add(g["tensile_strength"])
+    for f_t in sorted(strengths):
+        ax.axhline(1e-6 * f_t, color="k", ls=":", lw=1, label="f_t = %.3g MPa" % (1e-6 * f_t))
     ax.set_xlabel("approach of the strips (um)")
     ax.set_ylabel("2 P / (pi D t) (MPa)")
     ax.set_title("load")

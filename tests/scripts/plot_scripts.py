@@ -1,0 +1,74 @@
+#!/usr/bin/env python3
+"""The plot scripts read a run's own geometry: a Brazilian test on a 100 mm disc (not
+the shipped 150 mm one) is drawn with a nominal stress whose peak equals the run's
+splitting_strength, and the generic load-opening script finds the run's opening gauge
+and its loading strip's force.
+
+    plot_scripts.py LME_MPM_BINARY SOURCE_DIR WORK_DIR
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+binary, source, work = sys.argv[1:4]
+sys.path.insert(0, os.path.join(source, "scripts"))
+import plot_brazilian  # noqa: E402
+import plot_load_opening  # noqa: E402
+
+failures = []
+
+
+def check(ok, what):
+    print(("ok:     " if ok else "FAILED: ") + what)
+    if not ok:
+        failures.append(what)
+
+
+shutil.rmtree(work, ignore_errors=True)
+run = os.path.join(work, "disc_100mm")
+subprocess.run([binary, os.path.join(source, "prm", "brazilian.prm"),
+                "--set", "Scene/brazilian/Diameter=0.1",
+                "--set", "Grid/Cell size=0.005",
+                "--set", "Output/Opening gauges=lateral: 0.06, 0.1, 0.14, 0.1",
+                "--set", "Output/Directory=" + run, "--threads", "2"],
+               check=True, stdout=subprocess.DEVNULL)
+with open(os.path.join(run, "summary.json")) as f:
+    summary = json.load(f)
+
+approach, stress, geometry = plot_brazilian.curve(run)
+check(geometry["diameter"] == 0.1 and geometry["thickness"] == 1.0,
+      "D and t from the run's parameters.prm: %s" % geometry)
+peak = max(stress)
+strength = 1e-6 * summary["splitting_strength"]
+check(abs(peak / strength - 1) < 1e-3,
+      "drawn peak %.6g MPa against splitting_strength %.6g MPa" % (peak, strength))
+check(geometry["tensile_strength"] == 5.4e6,
+      "f_t from the disc's material: %s" % geometry["tensile_strength"])
+
+w, p, force, opening = plot_load_opening.curve(run)
+check(opening == "opening_lateral", "opening column %s" % opening)
+check(force in ("force_top_mean_y", "force_bottom_mean_y"), "force column %s" % force)
+check(abs(max(p) / summary["peak_force"] - 1) < 0.02,
+      "load-opening peak %.6g N against peak_force %.6g N" % (max(p), summary["peak_force"]))
+# The disc widens under load: the lateral opening at the peak is more than at half of it.
+i = max(range(len(p)), key=lambda k: p[k])
+half = next(k for k in range(len(p)) if p[k] >= 0.5 * p[i])
+check(w[i] > w[half] > 0, "opening %.3g m at half the peak, %.3g m at the peak" % (w[half], w[i]))
+
+# The figures themselves, where a Python with matplotlib is at hand.
+drawer = next((py for py in (sys.executable, "/usr/bin/python3") if subprocess.run(
+    [py, "-c", "import matplotlib"], stderr=subprocess.DEVNULL).returncode == 0), None)
+if drawer is None:
+    print("note: no Python with matplotlib here; the figures are not drawn")
+else:
+    for script, out in (("plot_brazilian.py", "brazilian.png"),
+                        ("plot_load_opening.py", "load_opening.png")):
+        png = os.path.join(work, out)
+        subprocess.run([drawer, os.path.join(source, "scripts", script), run, "--out", png],
+                       check=True, stdout=subprocess.DEVNULL)
+        check(os.path.getsize(png) > 10000, "%s drew %s" % (script, png))
+
+if failures:
+    sys.exit("%d check(s) failed" % len(failures))
