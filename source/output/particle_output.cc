@@ -22,8 +22,8 @@ double largest_principal(const SymmetricTensor<2, dim> &s)
 } // namespace
 
 template <int dim>
-ParticleOutput<dim>::ParticleOutput(const std::string &directory)
-    : particle_files(directory, "particles")
+ParticleOutput<dim>::ParticleOutput(const std::string &directory, const double thickness)
+    : particle_files(directory, "particles"), thickness(dim == 2 ? thickness : 1.0)
 {
 }
 
@@ -99,12 +99,14 @@ void ParticleOutput<dim>::patches(
       names.push_back(v);
   }
   const char *comp[3] = {"x", "y", "z"};
-  for (const char *stress : {"stress_", "undamaged_stress_"})
+  for (const char *tensor : {"stress_", "undamaged_stress_", "strain_"})
     for (unsigned int i = 0; i < dim; ++i)
       for (unsigned int j = i; j < dim; ++j)
-        names.push_back(std::string(stress) + comp[i] + comp[j]);
-  for (const char *s : {"max_principal_stress", "damage", "failed", "onset_strain",
-                        "material_id", "body_id", "particle_id", "density"})
+        names.push_back(std::string(tensor) + comp[i] + comp[j]);
+  for (const char *s :
+       {"max_principal_stress", "damage", "failed", "onset_strain", "crack_opening",
+        "dissipated_energy_density", "material_id", "body_id", "particle_id", "density",
+        "volume", "size"})
     names.push_back(s);
 
   patches.resize(n);
@@ -123,7 +125,7 @@ void ParticleOutput<dim>::patches(
     for (unsigned int d = 0; d < dim; ++d)
       patch.data(k++, 0) = particles.crack_normal[p][d];
     const SymmetricTensor<2, dim> stress = effective_stress(particles, p);
-    for (const auto *s : {&stress, &particles.stress[p]})
+    for (const auto *s : {&stress, &particles.stress[p], &particles.strain[p]})
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int j = i; j < dim; ++j)
           patch.data(k++, 0) = (*s)[i][j];
@@ -131,10 +133,16 @@ void ParticleOutput<dim>::patches(
     patch.data(k++, 0) = particles.damage[p];
     patch.data(k++, 0) = particles.failed[p];
     patch.data(k++, 0) = particles.onset_strain[p];
+    patch.data(k++, 0) = particles.crack_opening[p];
+    patch.data(k++, 0) = particles.dissipated[p] / particles.initial_volume[p];
     patch.data(k++, 0) = particles.material_id[p];
     patch.data(k++, 0) = particles.body_id[p];
     patch.data(k++, 0) = particles.id[p];
     patch.data(k++, 0) = particles.density[p];
+    patch.data(k++, 0) = particles.volume[p];
+    // The side of the particle's domain, to size glyphs in ParaView.
+    patch.data(k++, 0) = dim == 2 ? std::sqrt(particles.volume[p] / thickness)
+                                  : std::cbrt(particles.volume[p]);
   }
 }
 

@@ -87,7 +87,7 @@ TEST(Output, ProbesReportTheEffectiveStress)
   EXPECT_EQ(effective_stress(store, 2).norm(), 0.0);
   const std::string dir = lme_mpm_test::scratch("effective_stress");
   std::filesystem::create_directories(dir);
-  ParticleOutput<2>(dir).write(store, 0);
+  ParticleOutput<2>(dir, 1.0).write(store, 0);
   const std::string vtu = lme_mpm_test::file_text(dir + "/particles_00000.vtu");
   for (const char *field : {"stress_xx", "undamaged_stress_xx", "max_principal_stress"})
     EXPECT_NE(vtu.find(std::string("Name=\"") + field + "\""), std::string::npos)

@@ -22,7 +22,9 @@ class ParticleOutput
 public:
   using Records = VtuSeries::Records;
 
-  explicit ParticleOutput(const std::string &directory);
+  /// @p thickness: the real thickness of a 2D run (the field "size" is the side of a
+  /// particle's area, volume / thickness); ignored in 3D.
+  ParticleOutput(const std::string &directory, double thickness);
 
   /**
    * Writes particles_<index>.vtu and updates particles.pvd. The fields "stress_*" and
@@ -50,6 +52,7 @@ private:
                              DataComponentInterpretation::DataComponentInterpretation>>
           &vectors) const;
   VtuSeries particle_files;
+  double thickness;
 };
 } // namespace lme_mpm
 
