@@ -3,6 +3,8 @@
 #include <lme_mpm/output/probes.h>
 #include <lme_mpm/particles/damage_form.h>
 
+#include <algorithm>
+
 namespace lme_mpm
 {
 namespace
@@ -11,7 +13,7 @@ namespace
 template <int dim>
 struct ProbeEntries
 {
-  std::string name, point;
+  std::string name, point, quantities;
   double radius = 0.01;
 
   void entries(EntryList &list)
@@ -23,7 +25,15 @@ struct ProbeEntries
     list.add("Point", point, dim == 2 ? "0, 0" : "0, 0, 0", Patterns::Anything(),
              "Centre of the probe (m).");
     list.add("Radius", radius, "0.01", Patterns::Double(0),
-             "Particles within this distance are averaged (m), > 0.");
+             "Particles within this distance of the point (where they are now) are "
+             "averaged (m), > 0.");
+    list.add("Quantities", quantities, "stress",
+             Patterns::MultipleSelection("stress|displacement|velocity|damage"),
+             "What the probe reports, comma-separated: 'stress' (probe_<name>_sxx, "
+             "...: the volume-weighted mean effective stress), 'displacement' "
+             "(probe_<name>_ux, ...: the mass-weighted mean displacement, a "
+             "displacement gauge), 'velocity' (probe_<name>_vx, ...: mass-weighted), "
+             "'damage' (probe_<name>_damage: volume-weighted).");
   }
 };
 
@@ -65,6 +75,17 @@ void Probes<dim>::parse_parameters(ParameterHandler &prm, const unsigned int n_p
     probe.point  = input::parse_point<dim>(in[p].point, entry + "/Point");
     probe.radius = in[p].radius;
     input::require_range(probe.radius, 0, 1e300, true, entry + "/Radius");
+    const auto asked = input::split(in[p].quantities, ',');
+    const auto has   = [&](const char *q)
+    { return std::find(asked.begin(), asked.end(), std::string(q)) != asked.end(); };
+    probe.stress       = has("stress");
+    probe.displacement = has("displacement");
+    probe.velocity     = has("velocity");
+    probe.damage       = has("damage");
+    AssertThrow(probe.stress || probe.displacement || probe.velocity || probe.damage,
+                ExcBadInput(entry + "/Quantities",
+                            "names nothing to report: give one or more of stress, "
+                            "displacement, velocity, damage"));
     probes.push_back(probe);
   }
 }
@@ -73,10 +94,21 @@ template <int dim>
 void Probes<dim>::write_header(std::ostream &out) const
 {
   for (const auto &probe : probes)
-    for (unsigned int i = 0; i < dim; ++i)
-      for (unsigned int j = i; j < dim; ++j)
-        out << ",probe_" << probe.name << "_s"
-            << "xyz"[i] << "xyz"[j];
+  {
+    const std::string column = ",probe_" + probe.name + "_";
+    if (probe.stress)
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = i; j < dim; ++j)
+          out << column << 's' << "xyz"[i] << "xyz"[j];
+    if (probe.displacement)
+      for (unsigned int d = 0; d < dim; ++d)
+        out << column << 'u' << "xyz"[d];
+    if (probe.velocity)
+      for (unsigned int d = 0; d < dim; ++d)
+        out << column << 'v' << "xyz"[d];
+    if (probe.damage)
+      out << column << "damage";
+  }
 }
 
 template <int dim>
@@ -85,15 +117,33 @@ void Probes<dim>::write_row(std::ostream &out, const ParticleStore<dim> &store) 
   for (const auto &probe : probes)
   {
     SymmetricTensor<2, dim> s;
-    double w = 0;
+    Tensor<1, dim> u, v;
+    double volume = 0, mass = 0, damage = 0;
     for (std::size_t p = 0; p < store.size(); ++p)
       if (store.position[p].distance(probe.point) <= probe.radius)
-        s += store.volume[p] * effective_stress(store, p), w += store.volume[p];
-    if (w > 0)
-      s /= w;
-    for (unsigned int i = 0; i < dim; ++i)
-      for (unsigned int j = i; j < dim; ++j)
-        out << "," << s[i][j];
+      {
+        s += store.volume[p] * effective_stress(store, p);
+        u += store.mass[p] * (store.position[p] - store.reference_position[p]);
+        v += store.mass[p] * store.velocity[p];
+        damage += store.volume[p] * store.damage[p];
+        volume += store.volume[p], mass += store.mass[p];
+      }
+    if (volume > 0)
+      s /= volume, damage /= volume;
+    if (mass > 0)
+      u /= mass, v /= mass;
+    if (probe.stress)
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = i; j < dim; ++j)
+          out << "," << s[i][j];
+    if (probe.displacement)
+      for (unsigned int d = 0; d < dim; ++d)
+        out << "," << u[d];
+    if (probe.velocity)
+      for (unsigned int d = 0; d < dim; ++d)
+        out << "," << v[d];
+    if (probe.damage)
+      out << "," << damage;
   }
 }
 

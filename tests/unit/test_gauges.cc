@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/output/gauges.h>
+#include <lme_mpm/output/probes.h>
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <sstream>
 #include <string>
 
 using namespace lme_mpm;
@@ -122,4 +124,72 @@ TEST(OpeningGauges, EmptyListHasNoGaugeAndAGaugeOffTheBodiesIsRejected)
   F[0][0] = F[1][1]        = 1;
   const ParticleStore<2> p = deformed_lattice<2>(F, 0.1);
   EXPECT_THROW(gauges.check(p, nullptr), ExcBadInput);
+}
+
+TEST(Probes, ReadTheExactMeansOfAHomogeneousDeformation)
+{
+  // x = F X + c, velocity and damage affine in X: the particles within the radius of
+  // the image of the lattice's centre are symmetric about it, so each mean is the
+  // field's value there, exactly up to rounding.
+  Tensor<2, 2> F;
+  F[0][0] = 1.002, F[0][1] = 0.0005, F[1][0] = -0.0003, F[1][1] = 0.999;
+  ParticleStore<2> p = deformed_lattice<2>(F, 0.02);
+  Tensor<2, 2> L;
+  L[0][0] = 2, L[0][1] = -1, L[1][0] = 0.5, L[1][1] = 3;
+  for (std::size_t i = 0; i < p.size(); ++i)
+  {
+    p.velocity[i] = L * p.reference_position[i];
+    p.damage[i]   = 0.2 + 0.5 * p.reference_position[i][0];
+  }
+  const Point<2> X0(0.5, 0.5);
+  Tensor<1, 2> c;
+  c[0]                  = 0.3;
+  const Point<2> centre = Point<2>(F * X0 + c);
+  ParameterHandler prm;
+  Probes<2>::declare_parameters(prm, 2);
+  prm.enter_subsection("Output");
+  prm.enter_subsection("Probe 1");
+  prm.set("Name", "g");
+  prm.set("Point", std::to_string(centre[0]) + ", " + std::to_string(centre[1]));
+  prm.set("Radius", "0.1");
+  prm.set("Quantities", "displacement, velocity, damage");
+  prm.leave_subsection();
+  prm.enter_subsection("Probe 2");
+  prm.set("Name", "s");
+  prm.set("Point", std::to_string(centre[0]) + ", " + std::to_string(centre[1]));
+  prm.leave_subsection();
+  prm.leave_subsection();
+  Probes<2> probes;
+  probes.parse_parameters(prm, 2);
+  std::ostringstream header, row;
+  probes.write_header(header);
+  probes.write_row(row, p);
+  EXPECT_EQ(header.str(), ",probe_g_ux,probe_g_uy,probe_g_vx,probe_g_vy,probe_g_damage,"
+                          "probe_s_sxx,probe_s_sxy,probe_s_syy");
+  const auto v = input::parse_doubles(row.str().substr(1), "probe row");
+  ASSERT_EQ(v.size(), 8u);
+  // The point was printed to 6 digits: the centre it selects is exact to about 1e-6,
+  // and the set stays symmetric as long as no particle sits on the radius.
+  const Point<2> Xc(0.5, 0.5);
+  const Tensor<1, 2> u = F * Xc + c - Xc, w = L * Xc;
+  EXPECT_NEAR(v[0], u[0], 1e-12);
+  EXPECT_NEAR(v[1], u[1], 1e-12);
+  EXPECT_NEAR(v[2], w[0], 1e-12);
+  EXPECT_NEAR(v[3], w[1], 1e-12);
+  EXPECT_NEAR(v[4], 0.2 + 0.5 * 0.5, 1e-12);
+  // Bad input: nothing to report.
+  prm.enter_subsection("Output");
+  prm.enter_subsection("Probe 1");
+  prm.set("Quantities", "");
+  prm.leave_subsection();
+  prm.leave_subsection();
+  try
+  {
+    probes.parse_parameters(prm, 2);
+    ADD_FAILURE() << "an empty Quantities was accepted";
+  }
+  catch (const std::exception &e)
+  {
+    EXPECT_NE(std::string(e.what()).find("Output/Probe 1/Quantities"), std::string::npos);
+  }
 }

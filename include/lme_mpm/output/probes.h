@@ -12,20 +12,24 @@
 
 namespace lme_mpm
 {
-/// A point where history.csv reports the effective stress averaged over nearby
-/// particles.
+/// A point where history.csv reports means over the particles near it.
 template <int dim>
 struct Probe
 {
   std::string name;
   Point<dim> point;
   double radius;
+  /// Which means: the effective stress, displacement, velocity, damage.
+  bool stress = true, displacement = false, velocity = false, damage = false;
 };
 
 /**
- * The probes of "Output/Probe N": history.csv columns probe_<name>_sxx, ... with
- * the volume-weighted mean effective stress (effective_stress(): (1 - damage) sigma,
- * zero for failed particles) of the particles within each probe's radius.
+ * The probes of "Output/Probe N": history.csv columns, for the particles within each
+ * probe's radius of its point, of the volume-weighted mean effective stress
+ * (effective_stress(): (1 - damage) sigma, zero for failed particles) probe_<name>_sxx,
+ * ..., the mass-weighted mean displacement probe_<name>_ux, ... and velocity
+ * probe_<name>_vx, ..., and the volume-weighted mean damage probe_<name>_damage, as
+ * the probe's 'Quantities' ask.
  */
 template <int dim>
 class Probes
