@@ -127,6 +127,7 @@ public:
   bool reads_crack_strains() const override { return measured_band; }
   /// Crack-oriented damage takes its normal from the neighbourhood's mean stress.
   bool reads_stress_tensors() const override { return oriented; }
+  bool reads_strength_factors() const override { return true; }
   double search_radius(const double h) const override
   {
     return std::max(C_eps, measured_band ? band_cells : 0.0) * h;
@@ -168,7 +169,7 @@ public:
             m += P.mass[*q];
           }
         // Onset needs the particle itself in tension, so that its modulus is known.
-        if (!(ms > f_t * m && eps_I > 0 && sig_I > 0))
+        if (!(ms > f_t * P.strength[p] * m && eps_I > 0 && sig_I > 0))
           continue;
         if (!oriented)
         {
@@ -197,7 +198,8 @@ public:
         chi_new = band_damage(P, nb, F, p, h_p, eps_I, sig_I,
                               std::pow(std::max(C_eps, band_cells) * h_p, 2), snapped);
       else if (paper_rule)
-        chi_new = 1 - law->traction_ratio(std::max(0.0, strain_beyond) * h);
+        chi_new =
+            1 - law->traction_ratio(std::max(0.0, strain_beyond) * h * P.strength[p]);
       else
       {
         // The cohesive law starts at the particle's own stress at onset s0 when that is
@@ -207,9 +209,12 @@ public:
         // tip, s0 reaches 3 f_t) drops to f_t at once, the drop's energy booked by the
         // secant damage, and then follows the law itself: a law scaled up to s0 would
         // be (s0 / f_t)^2 times steeper, beyond what the band can follow.
-        const double s0 = law_peak(P.onset_stress[p]), r = s0 / f_t;
+        // A particle of strength k f_t (Strength variability) follows the law of peak
+        // k f_t and the same G_F: openings scaled by 1 / k, k = 1 without variability.
+        const double k = P.strength[p], s0 = law_peak(P.onset_stress[p], k),
+                     r = s0 / (k * f_t);
         const double M = P.onset_stress[p] / P.onset_strain[p];
-        if (1 / h <= s0 * r * law->max_slope() / M)
+        if (1 / h <= s0 * r * k * law->max_slope() / M)
         {
           chi_new            = 1; // beyond the snap-back limit: breaks at once
           P.crack_opening[p] = 1;
@@ -217,11 +222,11 @@ public:
         }
         else
         {
-          const double w_end = w_c / r;
-          const double own   = opening(strain_beyond, h, M, s0, r, w_end) / w_end;
+          const double w_end = w_c / (k * r);
+          const double own   = opening(strain_beyond, h, M, s0, k * r, w_end) / w_end;
           P.crack_opening[p] = own;
           const double w     = band_opening(P, nb, F, p, own, h_p) * w_end;
-          const double s     = s0 * law->traction_ratio(r * w);
+          const double s     = s0 * law->traction_ratio(k * r * w);
           chi_new            = w >= w_end ? 1.0 : (sig_I > s ? 1 - s / sig_I : 0.0);
         }
       }
@@ -268,7 +273,10 @@ private:
                      const double eps_I, const double sig_I, const double eps2,
                      unsigned long &snapped) const
   {
-    const double s0 = law_peak(P.onset_stress[p]), r = s0 / f_t, w_end = w_c / r;
+    // The law of peak s0 (at most the particle's strength k f_t) and energy G_F: its
+    // openings scaled by f_t / s0 (1 / k for a particle that starts at its strength).
+    const double s0 = law_peak(P.onset_stress[p], P.strength[p]), r = s0 / f_t,
+                 w_end = w_c / r;
     if (!(eps_I > 0 && sig_I > 0) || !nb.has_row(p))
       return 0;
     const Tensor<1, dim> n = crack_direction(P, p);
@@ -363,8 +371,9 @@ private:
       // The band shares one opening w, not one fraction of a critical opening: q's
       // fraction is of its own w_end = w_c f_t / s0_q, p's of w_c f_t / s0_p (s0 the
       // law's peak, law_peak()), which differ where particles start below f_t.
-      const double shared = F.crack_opening[*q] * law_peak(P.onset_stress[p]) /
-                            law_peak(P.onset_stress[*q]);
+      const double shared = F.crack_opening[*q] *
+                            law_peak(P.onset_stress[p], P.strength[p]) /
+                            law_peak(P.onset_stress[*q], P.strength[*q]);
       if (shared <= band)
         continue;
       if (!have_normal) // only once a neighbour is more open than p
@@ -434,8 +443,11 @@ private:
   }
 
   /// The peak of a particle's cohesive law from its stress at onset: that stress,
-  /// but no more than f_t (see update()).
-  double law_peak(const double onset_stress) const { return std::min(onset_stress, f_t); }
+  /// but no more than its strength, @p strength times f_t (see update()).
+  double law_peak(const double onset_stress, const double strength) const
+  {
+    return std::min(onset_stress, strength * f_t);
+  }
 
   double grid_spacing, thickness, C_eps = 0, f_t = 0, w_c = 0, band_width = 0;
   /// Crack-oriented damage, and lambda / M of the material.

@@ -22,6 +22,7 @@ void FractureCoupling<dim>::declare_parameters(ParameterHandler &prm,
     prm.enter_subsection(input::subsection_name("Material", m));
     prm.enter_subsection("Fracture");
     declare_fracture_parameters<dim>(prm);
+    StrengthField<dim>::declare_parameters(prm);
     prm.leave_subsection();
     prm.leave_subsection();
   }
@@ -58,7 +59,10 @@ void FractureCoupling<dim>::parse_parameters(ParameterHandler &prm,
   for (unsigned int d = 0; d < dim; ++d)
     uniform_grid = uniform_grid && grid->is_uniform(d);
   models.clear();
-  any_model = false;
+  strength_fields.assign(materials.size(), StrengthField<dim>());
+  strength_floor.assign(materials.size(), 1.0);
+  strengths_assigned = false;
+  any_model          = false;
   for (unsigned int m = 0; m < materials.size(); ++m)
   {
     const std::string section = input::subsection_name("Material", m);
@@ -79,6 +83,13 @@ void FractureCoupling<dim>::parse_parameters(ParameterHandler &prm,
     }
     else
       models.emplace_back();
+    strength_fields[m].parse_parameters(prm, section + "/Fracture", m);
+    AssertThrow(!strength_fields[m].active() ||
+                    (models.back() && models.back()->reads_strength_factors()),
+                ExcBadInput(section + "/Fracture/Strength variability/Distribution",
+                            "varies the tensile strength of a model that has one "
+                            "(eigensoftening); Model = " +
+                                model + " has none"));
     prm.leave_subsection();
     prm.leave_subsection();
   }
@@ -140,7 +151,7 @@ double FractureCoupling<dim>::reach_at(const double h) const
 }
 
 template <int dim>
-void FractureCoupling<dim>::prepare(const ParticleStore<dim> &store)
+void FractureCoupling<dim>::prepare(ParticleStore<dim> &store)
 {
   const std::size_t n = store.size();
   // Per-particle lengths follow the particles: recomputed when they were reordered
@@ -175,13 +186,15 @@ void FractureCoupling<dim>::prepare(const ParticleStore<dim> &store)
   // Every rank searches to the radius of all the particles.
   if (ranks)
     h_largest = ranks->max(h_largest);
+  if (!strengths_assigned)
+    assign_strengths(store);
   radius         = 0;
   seeded_rows    = true;
   measures_bands = false;
   reads_stresses = false;
   thresholds.fill(std::numeric_limits<double>::infinity());
-  for (const auto &f : models)
-    if (f)
+  for (unsigned int m = 0; m < models.size(); ++m)
+    if (const auto &f = models[m])
     {
       radius                  = std::max(radius, f->search_radius(h_largest));
       measures_bands          = measures_bands || f->reads_crack_strains();
@@ -192,7 +205,7 @@ void FractureCoupling<dim>::prepare(const ParticleStore<dim> &store)
       else
       {
         double &bound = thresholds[static_cast<unsigned int>(t.field)];
-        bound         = std::min(bound, t.threshold);
+        bound         = std::min(bound, t.threshold * strength_floor[m]);
       }
     }
   fields.max_principal_stress.resize(n);
@@ -205,6 +218,33 @@ void FractureCoupling<dim>::prepare(const ParticleStore<dim> &store)
   seeds.resize(n);
   prepared_size    = n;
   prepared_version = store.order_version();
+}
+
+template <int dim>
+void FractureCoupling<dim>::assign_strengths(ParticleStore<dim> &store)
+{
+  // A factor depends on the seed, the material and the particle alone: the same on
+  // any number of threads and ranks, and again after a restart.
+  for (unsigned int m = 0; m < strength_fields.size(); ++m)
+  {
+    const StrengthField<dim> &field = strength_fields[m];
+    if (!field.active())
+      continue;
+    parallel::for_range(store.size(),
+                        [&](const std::size_t b, const std::size_t e)
+                        {
+                          for (std::size_t p = b; p < e; ++p)
+                            if (store.material_id[p] == m)
+                              store.strength[p] =
+                                  field.factor(store.id[p], store.reference_position[p]);
+                        });
+    double lowest = 1e300;
+    for (std::size_t p = 0; p < store.size(); ++p)
+      if (store.material_id[p] == m)
+        lowest = std::min(lowest, store.strength[p]);
+    strength_floor[m] = ranks ? -ranks->max(-lowest) : lowest;
+  }
+  strengths_assigned = true;
 }
 
 template <int dim>

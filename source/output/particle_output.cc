@@ -105,8 +105,8 @@ void ParticleOutput<dim>::patches(
         names.push_back(std::string(tensor) + comp[i] + comp[j]);
   for (const char *s :
        {"max_principal_stress", "damage", "failed", "onset_strain", "crack_opening",
-        "dissipated_energy_density", "material_id", "body_id", "particle_id", "density",
-        "volume", "size"})
+        "dissipated_energy_density", "strength_factor", "material_id", "body_id",
+        "particle_id", "density", "volume", "size"})
     names.push_back(s);
 
   patches.resize(n);
@@ -135,6 +135,7 @@ void ParticleOutput<dim>::patches(
     patch.data(k++, 0) = particles.onset_strain[p];
     patch.data(k++, 0) = particles.crack_opening[p];
     patch.data(k++, 0) = particles.dissipated[p] / particles.initial_volume[p];
+    patch.data(k++, 0) = particles.strength[p];
     patch.data(k++, 0) = particles.material_id[p];
     patch.data(k++, 0) = particles.body_id[p];
     patch.data(k++, 0) = particles.id[p];

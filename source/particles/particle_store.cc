@@ -7,7 +7,11 @@ namespace lme_mpm
 template <int dim>
 void ParticleStore<dim>::resize(const std::size_t n)
 {
+  const std::size_t old = strength.size();
   for_each_field([n](auto &v) { v.resize(n); });
+  // A new particle has its material's strength until a strength field says otherwise.
+  if (n > old)
+    std::fill(strength.begin() + old, strength.end(), 1.0);
   ++version;
 }
 

@@ -7,6 +7,7 @@
 #include <lme_mpm/fracture/crack_set.h>
 #include <lme_mpm/fracture/fracture_model.h>
 #include <lme_mpm/fracture/neighbourhood.h>
+#include <lme_mpm/fracture/strength_field.h>
 #include <lme_mpm/grid/background_grid.h>
 #include <lme_mpm/materials/material_set.h>
 #include <lme_mpm/particles/particle_store.h>
@@ -85,9 +86,10 @@ public:
 
   /**
    * Sizes the snapshot for @p particles; call before take_snapshot() in each step
-   * (cheap after the first call).
+   * (cheap after the first call). The first call sets the particles' strength
+   * factors (ParticleStore::strength) from the materials' strength fields.
    */
-  void prepare(const ParticleStore<dim> &particles);
+  void prepare(ParticleStore<dim> &particles);
   /**
    * The snapshot of particles [@p begin, @p end), from their stresses and strains of
    * the step: called by the stress pass chunk by chunk, while the particles are in
@@ -105,12 +107,26 @@ public:
   void update(ParticleStore<dim> &particles, const CrackSet<dim> *cracks = nullptr,
               bool snapshot_taken = false);
 
+  /// The strength field of material @p m (inactive without 'Strength variability').
+  const StrengthField<dim> &strength_field(const unsigned int m) const
+  {
+    return strength_fields[m];
+  }
+
   /// Counters of every model, and the failed particles and dissipated energy.
   void add_statistics(const ParticleStore<dim> &particles,
                       std::map<std::string, double> &results) const;
 
 private:
+  /// Sets every particle's strength factor from its material's field, and the floors.
+  void assign_strengths(ParticleStore<dim> &store);
+
   std::vector<std::unique_ptr<FractureModel<dim>>> models; ///< per material, or null
+  std::vector<StrengthField<dim>> strength_fields;         ///< per material
+  /// Per material, the smallest strength factor of its particles (its trigger is
+  /// lowered by it); set, with the particles' factors, by the first prepare().
+  std::vector<double> strength_floor;
+  bool strengths_assigned         = false;
   bool any_model                  = false;
   const BackgroundGrid<dim> *grid = nullptr;
   bool uniform_grid               = true;

@@ -130,6 +130,9 @@ public:
   virtual bool reads_crack_strains() const { return false; }
   /// True if update() reads FractureFields::stress (the coupling copies it only then).
   virtual bool reads_stress_tensors() const { return false; }
+  /// True if update() scales the strength by ParticleStore::strength (the models that
+  /// a 'Strength variability' can apply to).
+  virtual bool reads_strength_factors() const { return false; }
 };
 
 template <int dim>

@@ -79,6 +79,9 @@ public:
   /// critical opening (eigensoftening's band shares it)
   std::vector<double> crack_opening;
   std::vector<double> dissipated; ///< fracture energy dissipated so far (J)
+  /// Tensile strength over the material's 'Tensile strength' (1 unless the material
+  /// has Strength variability), fixed at the start.
+  std::vector<double> strength;
   /// 1 once fully failed: no stress with isotropic damage, no traction across its
   /// crack with crack-oriented damage
   std::vector<std::uint8_t> failed;
@@ -104,7 +107,8 @@ public:
         f(initial_volume), f(density), f(strain), f(strain_increment), f(stress), f(id),
         f(material_id), f(body_id), f(cell), f(lme_lambda), f(lme_position),
         f(lme_lambda_rate), f(damage), f(onset_strain), f(onset_stress), f(crack_opening),
-        f(dissipated), f(failed), f(crack_normal), f(crack_coupling), f(ghost);
+        f(dissipated), f(strength), f(failed), f(crack_normal), f(crack_coupling),
+        f(ghost);
   }
 
 private:
