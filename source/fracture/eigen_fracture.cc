@@ -209,12 +209,11 @@ public:
         // tip, s0 reaches 3 f_t) drops to f_t at once, the drop's energy booked by the
         // secant damage, and then follows the law itself: a law scaled up to s0 would
         // be (s0 / f_t)^2 times steeper, beyond what the band can follow.
-        // A particle of strength k f_t (Strength variability) follows the law of peak
-        // k f_t and the same G_F: openings scaled by 1 / k, k = 1 without variability.
-        const double k = P.strength[p], s0 = law_peak(P.onset_stress[p], k),
-                     r = s0 / (k * f_t);
+        // A particle of strength k f_t (Strength variability) caps s0 at k f_t; the law
+        // keeps G_F, its openings scaled by f_t / s0 as below.
+        const double s0 = law_peak(P.onset_stress[p], P.strength[p]), r = s0 / f_t;
         const double M = P.onset_stress[p] / P.onset_strain[p];
-        if (1 / h <= s0 * r * k * law->max_slope() / M)
+        if (1 / h <= s0 * r * law->max_slope() / M)
         {
           chi_new            = 1; // beyond the snap-back limit: breaks at once
           P.crack_opening[p] = 1;
@@ -222,11 +221,11 @@ public:
         }
         else
         {
-          const double w_end = w_c / (k * r);
-          const double own   = opening(strain_beyond, h, M, s0, k * r, w_end) / w_end;
+          const double w_end = w_c / r;
+          const double own   = opening(strain_beyond, h, M, s0, r, w_end) / w_end;
           P.crack_opening[p] = own;
           const double w     = band_opening(P, nb, F, p, own, h_p) * w_end;
-          const double s     = s0 * law->traction_ratio(k * r * w);
+          const double s     = s0 * law->traction_ratio(r * w);
           chi_new            = w >= w_end ? 1.0 : (sig_I > s ? 1 - s / sig_I : 0.0);
         }
       }

@@ -1,8 +1,8 @@
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/fracture/strength_field.h>
 
+#include <algorithm>
 #include <cmath>
-#include <sstream>
 
 namespace lme_mpm
 {

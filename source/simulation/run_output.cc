@@ -132,8 +132,9 @@ template <int dim>
 void RunOutput<dim>::open(const std::string &directory)
 {
   output_directory = directory;
-  particle_output  = std::make_unique<ParticleOutput<dim>>(directory, parts.parameters.thickness);
-  grid_output      = std::make_unique<GridOutput<dim>>(directory);
+  particle_output =
+      std::make_unique<ParticleOutput<dim>>(directory, parts.parameters.thickness);
+  grid_output = std::make_unique<GridOutput<dim>>(directory);
 }
 
 template <int dim>

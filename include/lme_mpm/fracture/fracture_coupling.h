@@ -107,12 +107,6 @@ public:
   void update(ParticleStore<dim> &particles, const CrackSet<dim> *cracks = nullptr,
               bool snapshot_taken = false);
 
-  /// The strength field of material @p m (inactive without 'Strength variability').
-  const StrengthField<dim> &strength_field(const unsigned int m) const
-  {
-    return strength_fields[m];
-  }
-
   /// Counters of every model, and the failed particles and dissipated energy.
   void add_statistics(const ParticleStore<dim> &particles,
                       std::map<std::string, double> &results) const;

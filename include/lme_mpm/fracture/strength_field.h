@@ -52,7 +52,6 @@ public:
   double cdf(double factor) const;
   /// The Weibull modulus that gives the coefficient of variation (Weibull only).
   double weibull_modulus() const { return modulus; }
-  double coefficient_of_variation() const { return cov; }
 
 private:
   Distribution distribution = Distribution::none;
