@@ -5,16 +5,26 @@ loading branch and crack extent through the ligament.
 
     python3 scripts/plot_mode_i.py output/mode_i_panel*/ --out mode_i_panel.png
 
-Each argument is an output directory (history.csv, summary.json and, for the crack,
-failed_particles.csv). Defaults are the Griffith values for u_x free, plane strain
-(doc/reference_data.md section 2)."""
+Each argument is an output directory (history.csv, summary.json, parameters.prm and,
+for the crack, failed_particles.csv). The panel, its crack and its material come from
+the first run's parameters.prm (Body 1's rectangle and slot, Material 1's E, nu and
+G_c, the thickness). On the shipped panel's proportions (a / W = 1/4, H = W, nu = 0.333,
+plane strain) the Griffith line is the finite-element one of doc/reference_data.md
+section 2 (stiffness 0.990 and delta_c = 0.00651 at E = 1.06, G_c = 1e-4, W = t = 1),
+scaled to the run's E, G_c, size and thickness; on other proportions it is the
+fixed-grip strip's (delta_c = sqrt(G_c H / (2 E')), stiffness E' W t / H), which the
+script says. Options override any value."""
 import argparse
 import csv
 import json
+import math
 import os
 import sys
 
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from scene_plots import parameter, read_parameters  # noqa: E402
 
 
 def read_history(path):
@@ -61,18 +71,62 @@ def ligament_cut(run, a, width, y_crack, band, bins):
     return float(np.mean(hit)), spread
 
 
+def call_arguments(text, name, run):
+    """The numbers of 'name(a, b, ...)' in @p text."""
+    text = text.strip()
+    if not text.startswith(name + "("):
+        sys.exit("%s/parameters.prm: expected %s(...), got '%s'" % (run, name, text))
+    return [float(v) for v in text[len(name) + 1:-1].split(",")]
+
+
+def griffith(run):
+    """The panel's Griffith line from the run's own parameters.prm: (stiffness P/(2 delta),
+    delta_c, crack length, width, crack height, note)."""
+    v = read_parameters(run)
+    x0, y0, x1, y1 = call_arguments(parameter(v, "Body 1/Shape", run), "rectangle", run)
+    slot = call_arguments(v.get("Body 1/Holes", "").split(";")[0] or "slot(0,0,0,0,0)",
+                          "slot", run)
+    W, H, a, y_crack = x1 - x0, y1 - y0, slot[2], slot[1]
+    E = parameter(v, "Material 1/linear elastic/Young's modulus", run)
+    nu = parameter(v, "Material 1/linear elastic/Poisson's ratio", run)
+    G_c = parameter(v, "Material 1/Fracture/Fracture energy", run)
+    t = parameter(v, "Problem/Thickness", run)
+    strain = parameter(v, "Problem/Plane assumption", run) == "plane strain"
+    E_prime = E / (1 - nu * nu) if strain else E
+    reference = (strain and abs(nu - 0.333) < 1e-3 and abs(a / W - 0.25) < 1e-6
+                 and abs(H / W - 1) < 1e-6)
+    if reference:
+        # The finite-element values scale as E t (stiffness) and sqrt(G_c H / E).
+        k = 0.990 * (E / 1.06) * t
+        delta_c = 0.00651 * math.sqrt((G_c / 1e-4) * (H / 1.0) / (E / 1.06))
+        note = "finite-element Griffith line of the reference panel, scaled"
+    else:
+        k = E_prime * W * t / H
+        delta_c = math.sqrt(G_c * H / (2 * E_prime))
+        note = ("fixed-grip strip formula: the panel's proportions differ from the "
+                "reference (a/W %.3g, H/W %.3g, nu %.3g)" % (a / W, H / W, nu))
+    return k, delta_c, a, W, y_crack, note
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("runs", nargs="+", help="output directories")
     ap.add_argument("--out", default="mode_i_panel.png")
-    ap.add_argument("--stiffness", type=float, default=0.990, help="P/(2 delta) of the panel")
-    ap.add_argument("--delta-c", type=float, default=0.00651, help="Griffith opening per edge")
-    ap.add_argument("--crack-length", type=float, default=0.25)
-    ap.add_argument("--width", type=float, default=1.0)
-    ap.add_argument("--crack-y", type=float, default=0.5)
+    ap.add_argument("--stiffness", type=float, help="P/(2 delta) of the panel")
+    ap.add_argument("--delta-c", type=float, help="Griffith opening per edge")
+    ap.add_argument("--crack-length", type=float)
+    ap.add_argument("--width", type=float)
+    ap.add_argument("--crack-y", type=float)
     ap.add_argument("--band", type=float, default=0.1, help="half-width of the crack band checked")
     ap.add_argument("--table", default=None, help="also write the table to this CSV")
     args = ap.parse_args()
+    k, delta_c, a, W, y_crack, note = griffith(args.runs[0])
+    for name, value in (("stiffness", k), ("delta_c", delta_c), ("crack_length", a),
+                        ("width", W), ("crack_y", y_crack)):
+        if getattr(args, name) is None:
+            setattr(args, name, value)
+    print("Griffith: stiffness %.4g, delta_c %.4g, peak %.4g (%s)"
+          % (args.stiffness, args.delta_c, 2 * args.stiffness * args.delta_c, note))
 
     import matplotlib
     matplotlib.use("Agg")

@@ -1,4 +1,5 @@
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/geometry/boundary_shapes.h>
 #include <lme_mpm/geometry/geometry.h>
 
 #include <cmath>
@@ -291,6 +292,20 @@ GeometryRegistry<dim> &GeometryRegistry<dim>::instance()
                           "slot(x, y, length, width, angle): a notch from (x, y) "
                           "towards angle (degrees from +x)",
                           make<dim, Slot<dim>>()});
+    registry.add("polygon",
+                 {Entry::any_number,
+                  dim == 2 ? "polygon(x1, y1, x2, y2, ..., xn, yn): n >= 3 vertices"
+                           : "polygon(x1, y1, ..., xn, yn): a prism along z of n >= 3 "
+                             "vertices",
+                  [](const std::vector<double> &a) { return create_polygon<dim>(a); }});
+    registry.add("mesh", {0,
+                          "mesh(file[, scale][, format]): the region a mesh file "
+                          "covers (Gmsh .msh, Abaqus .inp, UCD, VTK, UNV; read by "
+                          "deal.II's GridIn, path relative to the working directory), "
+                          "coordinates times scale",
+                          {},
+                          [](const std::string &args, const std::string &entry)
+                          { return create_mesh_shape<dim>(args, entry); }});
     return true;
   }();
   (void)built_in;
@@ -301,11 +316,22 @@ template <int dim>
 std::unique_ptr<Geometry<dim>>
 GeometryRegistry<dim>::create(const std::string &text, const std::string &entry) const
 {
-  const input::Call call = input::parse_call(text, entry);
-  const Entry *shape     = this->find(call.name);
-  AssertThrow(shape != nullptr, ExcBadInput(entry, "unknown shape '" + call.name +
+  const std::string t    = input::trim(text);
+  const auto open        = t.find('(');
+  const std::string name = input::trim(t.substr(0, open));
+  const Entry *shape     = this->find(name);
+  AssertThrow(shape != nullptr, ExcBadInput(entry, "unknown shape '" + name +
                                                        "'; known: " + documentation()));
-  AssertThrow(call.args.size() == shape->n_arguments,
+  if (shape->create_from_text)
+  {
+    AssertThrow(
+        open != std::string::npos && t.back() == ')',
+        ExcBadInput(entry, "expected " + shape->description + ", got '" + text + "'"));
+    return shape->create_from_text(t.substr(open + 1, t.size() - open - 2), entry);
+  }
+  const input::Call call = input::parse_call(text, entry);
+  AssertThrow(shape->n_arguments == Entry::any_number ||
+                  call.args.size() == shape->n_arguments,
               ExcBadInput(entry, "'" + call.name + "' takes " +
                                      std::to_string(shape->n_arguments) +
                                      " numbers: " + shape->description));

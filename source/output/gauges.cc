@@ -21,11 +21,18 @@ void OpeningGauges<dim>::declare_parameters(ParameterHandler &prm)
   prm.declare_entry(
       "Opening gauges", "", Patterns::Anything(),
       std::string("Clip gauges, separated by ';', each 'name: ") +
-          (dim == 2 ? "xA, yA, xB, yB" : "xA, yA, zA, xB, yB, zB") +
+          (dim == 2 ? "xA, yA, xB, yB[, radius]"
+                    : "xA, yA, zA, xB, yB, zB[, radius]' or 'name: xA, yA, xB, yB[, "
+                      "radius]") +
           "' (m, positions at t = 0): history.csv reports opening_<name>, the "
           "change in distance between the mean displacements of the particles "
-          "near A and near B (a crack mouth opening, a lateral expansion). "
-          "'Loading control/Gauge' may name one. Empty: none.");
+          "near A and near B (a crack mouth opening, a lateral expansion). " +
+          (dim == 3 ? "Points given by x and y only stand for lines along z: the "
+                      "gauge averages through the thickness. "
+                    : "") +
+          "A radius given with a gauge replaces 'Output/Gauge radius' for it. The "
+          "built-in scenes add their own gauges to this list. 'Loading control/"
+          "Gauge' may name one. Empty: none.");
   prm.declare_entry("Gauge radius", "0", Patterns::Double(0),
                     "Particles whose position at t = 0 lies within this distance of "
                     "a gauge point are averaged (m); 0: half the smallest cell.");
@@ -64,19 +71,37 @@ void OpeningGauges<dim>::parse_parameters(ParameterHandler &prm, const double ce
                 ExcBadInput(list_entry, "two gauges are named '" + g.name + "'"));
     const std::vector<double> c =
         input::parse_doubles(item.substr(colon + 1), list_entry);
-    AssertThrow(c.size() == 2 * dim,
-                ExcBadInput(list_entry, "gauge '" + g.name + "' has " +
-                                            std::to_string(c.size()) +
-                                            " coordinates; it needs " +
-                                            std::to_string(2 * dim) + " (A, then B)"));
-    for (unsigned int d = 0; d < dim; ++d)
-      g.a[d] = c[d], g.b[d] = c[dim + d];
-    AssertThrow(g.a.distance(g.b) > 2 * radius,
-                ExcBadInput(list_entry, "the points of gauge '" + g.name + "' are " +
-                                            format_double(g.a.distance(g.b)) +
-                                            " m apart; they must be more than twice '" +
-                                            radius_entry + "' (" +
-                                            format_double(2 * radius) + " m) apart"));
+    // A and B with dim coordinates each, or (in 3D) lines along z with x and y; then
+    // an optional radius.
+    const unsigned int per_point = c.size() >= 2 * dim ? dim : 2;
+    AssertThrow(
+        c.size() == 2 * dim || c.size() == 2 * dim + 1 ||
+            (dim == 3 && (c.size() == 4 || c.size() == 5)),
+        ExcBadInput(list_entry, "gauge '" + g.name + "' has " + std::to_string(c.size()) +
+                                    " numbers; it needs " + std::to_string(2 * dim) +
+                                    " (A, then B) and optionally a radius" +
+                                    (dim == 3 ? ", or 4 (x and y of A and B: lines along "
+                                                "z) and optionally a radius"
+                                              : "")));
+    g.line = per_point < dim;
+    for (unsigned int d = 0; d < per_point; ++d)
+      g.a[d] = c[d], g.b[d] = c[per_point + d];
+    g.radius = radius;
+    if (c.size() == 2 * per_point + 1)
+    {
+      g.radius = c.back();
+      AssertThrow(g.radius > 0,
+                  ExcBadInput(list_entry, "the radius of gauge '" + g.name +
+                                              "' must be positive (got " +
+                                              format_double(g.radius) + " m)"));
+    }
+    AssertThrow(g.a.distance(g.b) > 2 * g.radius,
+                ExcBadInput(list_entry,
+                            "the points of gauge '" + g.name + "' are " +
+                                format_double(g.a.distance(g.b)) +
+                                " m apart; they must be more than twice its radius (" +
+                                format_double(2 * g.radius) + " m; '" + radius_entry +
+                                "' unless the gauge gives one) apart"));
     gauges.push_back(g);
   }
 }
@@ -88,6 +113,14 @@ unsigned int OpeningGauges<dim>::find(const std::string &n) const
     if (gauges[g].name == n)
       return g;
   return gauges.size();
+}
+
+template <int dim>
+std::string OpeningGauges<dim>::describe(const unsigned int g) const
+{
+  return "A " + point_to_string(gauges[g].a) + ", B " + point_to_string(gauges[g].b) +
+         (gauges[g].line ? " (lines along z)" : "") + ", radius " +
+         format_double(gauges[g].radius) + " m";
 }
 
 template <int dim>
@@ -104,7 +137,6 @@ std::vector<double> OpeningGauges<dim>::sums(const ParticleStore<dim> &p) const
 {
   // Per gauge: mass at A, at B, then mass-weighted displacement along AB at A, at B.
   std::vector<double> s(4 * gauges.size(), 0.0);
-  const double r2 = radius * radius;
   for (std::size_t i = 0; i < p.size(); ++i)
   {
     if (p.ghost[i] != 0 ||
@@ -115,7 +147,7 @@ std::vector<double> OpeningGauges<dim>::sums(const ParticleStore<dim> &p) const
     {
       const Gauge &gauge = gauges[g];
       for (unsigned int k = 0; k < 2; ++k)
-        if ((X - (k == 0 ? gauge.a : gauge.b)).norm_square() <= r2)
+        if (gauge.near(X, k == 0 ? gauge.a : gauge.b))
         {
           const Tensor<1, dim> e = (gauge.b - gauge.a) / gauge.a.distance(gauge.b);
           s[4 * g + k] += p.mass[i];
@@ -140,8 +172,9 @@ void OpeningGauges<dim>::check(const ParticleStore<dim> &p,
                               "point " + std::string(k == 0 ? "A" : "B") + " of gauge '" +
                                   gauges[g].name + "' (" +
                                   point_to_string(k == 0 ? gauges[g].a : gauges[g].b) +
-                                  ") has no particle of a free body within '" +
-                                  radius_entry + "' (" + format_double(radius) +
+                                  ") has no particle of a free body within its "
+                                  "radius (" +
+                                  format_double(gauges[g].radius) +
                                   " m): put it inside a body"));
 }
 

@@ -28,7 +28,7 @@ namespace scenes
 /// The Brazilian scene's entries, declared and read from this one list.
 struct BrazilianEntries
 {
-  std::string centre, disc, top, bottom;
+  std::string centre, disc, top, bottom, disc_shape_text;
   double diameter = 0.15, length = 0.3, strip_width = 0.01, strip_thickness = 0.005;
   double velocity = 0.05, ramp = 1e-4, gauge = 0.075, stop_fraction = 0.3;
   double zone_depth          = 0;
@@ -69,6 +69,11 @@ struct BrazilianEntries
     list.add("Elastic zone material", zone_material, "2", Patterns::Integer(1),
              "The number N of the 'Material N' of the elastic zones.");
     list.add("Disc", disc, "disc", Patterns::Anything(), "The Body N/Name of the disc.");
+    list.add("Disc shape", disc_shape_text, "", Patterns::Anything(),
+             "The disc body's Shape, if not the exact disc of Diameter about Centre: "
+             "the same disc from a mesh or a polygon, e.g. 'mesh(disc.msh, 0.001)' "
+             "(the strips, zones and gauges still follow Diameter and Centre). Empty: "
+             "the exact disc; a disc body with a Particle file keeps its particles.");
     list.add("Top strip", top, "top", Patterns::Anything(),
              "The Body N/Name of the upper strip (its force is the load).");
     list.add("Bottom strip", bottom, "bottom", Patterns::Anything(),
@@ -117,7 +122,21 @@ public:
                         entry("Diameter") + "' and '" + entry("Centre"),
                         "the disc of diameter " + number(diameter) + " m about (" +
                             number(cx) + ", " + number(cy) + ")");
-    writer.set_body(disc, "Shape", disc_shape, entry("Disc"));
+    add_opening_gauge(writer, gauge_name, Point<2>(cx - 0.5 * gauge, cy),
+                      Point<2>(cx + 0.5 * gauge, cy), gauge_radius());
+    // A disc from a particle file or from another shape (a mesh) replaces the exact
+    // one; everything placed about it still follows Diameter and Centre.
+    const std::string particle_file =
+        writer.get(input::subsection_name("Body", writer.body(disc, entry("Disc"))) +
+                   "/Particle file");
+    AssertThrow(particle_file.empty() || input::trim(disc_shape_text).empty(),
+                ExcBadInput(entry("Disc shape"),
+                            "is set, and the disc body has a Particle file: give one"));
+    if (particle_file.empty())
+      writer.set_body(
+          disc, "Shape",
+          input::trim(disc_shape_text).empty() ? disc_shape : disc_shape_text,
+          entry(input::trim(disc_shape_text).empty() ? "Disc" : "Disc shape"));
     if (zone_depth > 0)
     {
       const auto n_materials = std::stoul(writer.get("Problem/Number of materials"));
@@ -175,12 +194,9 @@ public:
                 ExcBadInput("Problem/Body force",
                             "the Brazilian test has no gravity (its "
                             "weight is negligible against the load)"));
+    (void)d;
     // Both gauge points must hold particles, or the opening would read zero.
-    for (const int side : {-1, 1})
-      AssertThrow(gauge_weight(*state.particles, d, side) > 0,
-                  ExcBadInput(entry("Opening gauge length"),
-                              "no particle of the disc lies within " +
-                                  number(gauge_radius()) + " m of a gauge point"));
+    require_gauge_particles(state, gauge_name, entry("Opening gauge length"), "the disc");
   }
 
   void write_history_header(std::ostream &out) const override
@@ -191,9 +207,7 @@ public:
   void write_history_row(std::ostream &out, const SceneState<dim> &state) const override
   {
     const unsigned int d = body_index(state, disc, entry("Disc"));
-    out << ","
-        << gauge_displacement(*state.particles, d, 1) -
-               gauge_displacement(*state.particles, d, -1);
+    out << "," << gauge_reading(state, gauge_name);
     // Where the crack starts: the damage-weighted volume of the disc within R/2 of
     // the centre, and in all of it.
     const ParticleStore<dim> &p = *state.particles;
@@ -272,39 +286,10 @@ public:
   }
 
 private:
-  /// Gauge points are material points: particles within this distance (in the x-y
-  /// plane) of (cx -+ gauge / 2, cy) in the reference configuration.
+  /// The opening gauge across the loaded diameter's normal: material points at
+  /// (cx -+ gauge / 2, cy), the particles within 0.02 D of each (through the thickness).
+  static constexpr const char *gauge_name = "diameter";
   double gauge_radius() const { return 0.02 * diameter; }
-
-  bool near_gauge(const Point<dim> &x0, const int side) const
-  {
-    const double dx = x0[0] - (cx + 0.5 * side * gauge), dy = x0[1] - cy;
-    return dx * dx + dy * dy <= gauge_radius() * gauge_radius();
-  }
-
-  double gauge_weight(const ParticleStore<dim> &p, const unsigned int body,
-                      const int side) const
-  {
-    double m = 0;
-    for (std::size_t i = 0; i < p.size(); ++i)
-      if (p.body_id[i] == body && near_gauge(p.reference_position[i], side))
-        m += p.mass[i];
-    return m;
-  }
-
-  /// The mass-weighted mean x displacement of the gauge point on @p side.
-  double gauge_displacement(const ParticleStore<dim> &p, const unsigned int body,
-                            const int side) const
-  {
-    double m = 0, u = 0;
-    for (std::size_t i = 0; i < p.size(); ++i)
-      if (p.body_id[i] == body && near_gauge(p.reference_position[i], side))
-      {
-        m += p.mass[i];
-        u += p.mass[i] * (p.position[i][0] - p.reference_position[i][0]);
-      }
-    return m > 0 ? u / m : 0;
-  }
 
   static std::string entry(const std::string &name) { return "Scene/brazilian/" + name; }
   double cx = 0.1, cy = 0.1, fracture_energy = 0;

@@ -95,6 +95,22 @@ std::string EntryWriter::get(const std::string &entry) const
   return input::trim(prm.get(path, key));
 }
 
+void EntryWriter::append_item(const std::string &entry, const std::string &item)
+{
+  const std::string now = get(entry);
+  for (const auto &i : input::split(now, ';'))
+    if (i == input::trim(item))
+      return;
+  std::vector<std::string> path = input::split(entry, '/');
+  const std::string key         = path.back();
+  path.pop_back();
+  for (const auto &s : path)
+    prm.enter_subsection(s);
+  prm.set(key, now.empty() ? input::trim(item) : now + "; " + input::trim(item));
+  for (std::size_t i = 0; i < path.size(); ++i)
+    prm.leave_subsection();
+}
+
 unsigned int EntryWriter::body(const std::string &name, const std::string &owner) const
 {
   return find_body(prm, bodies, name, owner);

@@ -426,24 +426,34 @@ const NodeConstraint<dim> &constraint_named(const SceneState<dim> &state,
   return sets[0];
 }
 
-template <int dim>
-Tensor<1, dim> mean_displacement_near(const ParticleStore<dim> &p,
-                                      const unsigned int body, const Point<2> &centre,
-                                      const double radius)
+void add_opening_gauge(EntryWriter &writer, const std::string &name, const Point<2> &a,
+                       const Point<2> &b, const double radius)
 {
-  double m = 0;
-  Tensor<1, dim> u;
-  for (std::size_t i = 0; i < p.size(); ++i)
-  {
-    const double dx = p.reference_position[i][0] - centre[0],
-                 dy = p.reference_position[i][1] - centre[1];
-    if (p.body_id[i] == body && dx * dx + dy * dy <= radius * radius)
-    {
-      m += p.mass[i];
-      u += p.mass[i] * (p.position[i] - p.reference_position[i]);
-    }
-  }
-  return m > 0 ? u / m : u;
+  writer.append_item("Output/Opening gauges",
+                     name + ": " + number(a[0]) + ", " + number(a[1]) + ", " +
+                         number(b[0]) + ", " + number(b[1]) + ", " + number(radius));
+}
+
+template <int dim>
+double gauge_reading(const SceneState<dim> &state, const std::string &name)
+{
+  const unsigned int g = state.gauges->find(name);
+  Assert(g < state.gauges->size(), ExcInternalError());
+  return state.gauges->read(*state.particles, nullptr)[g];
+}
+
+template <int dim>
+void require_gauge_particles(const SceneState<dim> &state, const std::string &name,
+                             const std::string &owner, const std::string &what)
+{
+  const unsigned int g = state.gauges->find(name);
+  Assert(g < state.gauges->size(), ExcInternalError());
+  for (unsigned int end = 0; end < 2; ++end)
+    AssertThrow(state.gauges->mass_near(g, end, *state.particles) > 0,
+                ExcBadInput(owner, "no particle of " + what +
+                                       " lies within the radius of "
+                                       "the opening gauge '" +
+                                       name + "' (" + state.gauges->describe(g) + ")"));
 }
 
 template std::string box_shape<2>(double, double, double, double, double);
@@ -486,9 +496,11 @@ template const NodeConstraint<2> &
 constraint_named(const SceneState<2> &, const std::string &, const std::string &);
 template const NodeConstraint<3> &
 constraint_named(const SceneState<3> &, const std::string &, const std::string &);
-template Tensor<1, 2> mean_displacement_near(const ParticleStore<2> &, unsigned int,
-                                             const Point<2> &, double);
-template Tensor<1, 3> mean_displacement_near(const ParticleStore<3> &, unsigned int,
-                                             const Point<2> &, double);
+template double gauge_reading(const SceneState<2> &, const std::string &);
+template double gauge_reading(const SceneState<3> &, const std::string &);
+template void require_gauge_particles(const SceneState<2> &, const std::string &,
+                                      const std::string &, const std::string &);
+template void require_gauge_particles(const SceneState<3> &, const std::string &,
+                                      const std::string &, const std::string &);
 } // namespace scenes
 } // namespace lme_mpm

@@ -127,6 +127,10 @@ public:
 
   void write_entries(EntryWriter &writer) override
   {
+    // The notch mouth's gauge: material points on the flat edge 2.5 notch widths
+    // either side of the notch, the particles within a notch width of each.
+    add_opening_gauge(writer, gauge_name, Point<2>(cx - 2.5 * notch_width, cy),
+                      Point<2>(cx + 2.5 * notch_width, cy), notch_width);
     // The half disc, curved side up (in 3D it fills the grid's z extent).
     const std::string half_disc =
         "half_disc(" + number(cx) + ", " + number(cy) + ", " + number(radius) + ", 90)";
@@ -195,12 +199,7 @@ public:
   {
     const unsigned int s        = body_index(state, specimen, entry("Specimen"));
     const ParticleStore<dim> &p = *state.particles;
-    // The notch mouth: material points on the flat edge 2.5 notch widths either side.
-    const double g = 2.5 * notch_width, r = notch_width;
-    const double opening = mean_displacement_near(p, s, Point<2>(cx + g, cy), r)[0] -
-                           mean_displacement_near(p, s, Point<2>(cx - g, cy), r)[0];
-    const double damaged = damaged_volume(p, s);
-    out << "," << opening << "," << damaged;
+    out << "," << gauge_reading(state, gauge_name) << "," << damaged_volume(p, s);
   }
 
   std::string finished(const SceneState<dim> &state) const override
@@ -246,6 +245,7 @@ private:
     return "Scene/semicircular bending/" + name;
   }
   double cx = 0.063, cy = 0.015, fracture_energy = 0;
+  static constexpr const char *gauge_name = "notch_mouth";
   std::string left, right;
 };
 } // namespace scenes

@@ -155,6 +155,7 @@ SceneState<dim> RunOutput<dim>::scene_state(const double t,
   state.body_names  = &parts.bodies.names();
   state.run         = &parts.parameters;
   state.constraints = &parts.constraints;
+  state.gauges      = &parts.gauges;
   if (parts.contact_forces())
   {
     state.contact_forces      = &contact_means.current();
@@ -428,6 +429,9 @@ RunSummary RunOutput<dim>::summarise(const double wall, const unsigned int steps
   results["final_particles"] = all.size();
   results["final_mass"]      = std::accumulate(all.mass.begin(), all.mass.end(), 0.0);
   results["initial_mass"]    = initial_mass;
+  for (const auto &v : body_volumes)
+    if (!v.first.empty() && v.second > 0) // not a rigid exact surface
+      results["initial_volume_" + v.first] = v.second;
   parts.fracture.add_statistics(all, results);
   if (parts.fracture.active())
   {

@@ -129,3 +129,39 @@ TEST(MaterialZones, AWeakZoneInsideOneBodyIsWhereTheBarBreaks)
   }
   EXPECT_GT(in_zone, 0u);
 }
+
+TEST(Brazilian, OpeningColumnIsTheScenesOpeningGauge)
+{
+  // The scene's opening is the opening gauge it adds to Output/Opening gauges: the
+  // same number in both columns, the gauge in the run's recorded parameters, and a
+  // user's gauge beside it.
+  const std::string dir = lme_mpm_test::scratch("brazilian_gauge");
+  std::ostringstream quiet;
+  lme_mpm::run_parameter_file(lme_mpm_test::scene("brazilian.prm"),
+                              {"Scene/brazilian/Diameter=0.1", "Grid/Cell size=0.005",
+                               "Time/End time=6e-4",
+                               "Output/Opening gauges=lateral: 0.06, 0.1, 0.14, 0.1",
+                               "Output/Directory=" + dir, "Output/Verbosity=0"},
+                              quiet);
+  const auto [names, rows] = lme_mpm_test::read_history(dir);
+  const std::size_t scene  = lme_mpm_test::column(names, "opening"),
+                    gauge  = lme_mpm_test::column(names, "opening_diameter");
+  (void)lme_mpm_test::column(names, "opening_lateral");
+  ASSERT_GT(rows.size(), 5u);
+  double largest = 0;
+  for (const auto &row : rows)
+  {
+    EXPECT_EQ(row[scene], row[gauge]);
+    largest = std::max(largest, std::abs(row[gauge]));
+  }
+  EXPECT_GT(largest, 1e-7);
+  const std::string prm = lme_mpm_test::file_text(dir + "/parameters.prm");
+  EXPECT_NE(prm.find("lateral: 0.06, 0.1, 0.14, 0.1; diameter: "), std::string::npos);
+  // A user's gauge of the scene's name is refused, naming the list.
+  const std::string e =
+      lme_mpm_test::run_error(lme_mpm_test::scene("brazilian.prm"),
+                              {"Scene/brazilian/Diameter=0.1", "Grid/Cell size=0.005",
+                               "Output/Opening gauges=diameter: 0.06, 0.1, 0.14, 0.1"},
+                              dir + "_bad");
+  EXPECT_NE(e.find("two gauges are named 'diameter'"), std::string::npos) << e;
+}

@@ -118,7 +118,10 @@ TEST(LoadingControl, EntriesAreCheckedAndNamed)
   m = with("Output/Opening gauges=lateral: 0.0105, 0.03, 0.0495, 0.01");
   EXPECT_NE(m.find("no particle of a free body"), std::string::npos) << m;
   m = with("Output/Opening gauges=lateral: 0.0105, 0.01, 0.0106, 0.01");
-  EXPECT_NE(m.find("twice 'Output/Gauge radius'"), std::string::npos) << m;
+  EXPECT_NE(m.find("more than twice its radius"), std::string::npos) << m;
+  m = with("Output/Opening gauges=lateral: 0.0105, 0.01, 0.0495, 0.01, 0");
+  EXPECT_NE(m.find("the radius of gauge 'lateral' must be positive"), std::string::npos)
+      << m;
   m = with("Output/Opening gauges=lateral: 0.0105, 0.01, 0.0495, 0.01; lateral: 0.02, "
            "0.01, 0.03, 0.01");
   EXPECT_NE(m.find("two gauges are named 'lateral'"), std::string::npos) << m;

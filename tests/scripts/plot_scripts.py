@@ -31,7 +31,6 @@ run = os.path.join(work, "disc_100mm")
 subprocess.run([binary, os.path.join(source, "prm", "brazilian.prm"),
                 "--set", "Scene/brazilian/Diameter=0.1",
                 "--set", "Grid/Cell size=0.005",
-                "--set", "Output/Opening gauges=lateral: 0.06, 0.1, 0.14, 0.1",
                 "--set", "Output/Directory=" + run, "--threads", "2"],
                check=True, stdout=subprocess.DEVNULL)
 with open(os.path.join(run, "summary.json")) as f:
@@ -48,7 +47,8 @@ check(geometry["tensile_strength"] == 5.4e6,
       "f_t from the disc's material: %s" % geometry["tensile_strength"])
 
 w, p, force, opening = plot_load_opening.curve(run)
-check(opening == "opening_lateral", "opening column %s" % opening)
+# The scene's own gauge across the disc is the run's only one.
+check(opening == "opening_diameter", "opening column %s" % opening)
 check(force in ("force_top_mean_y", "force_bottom_mean_y"), "force column %s" % force)
 check(abs(max(p) / summary["peak_force"] - 1) < 0.02,
       "load-opening peak %.6g N against peak_force %.6g N" % (max(p), summary["peak_force"]))
@@ -69,6 +69,38 @@ else:
         subprocess.run([drawer, os.path.join(source, "scripts", script), run, "--out", png],
                        check=True, stdout=subprocess.DEVNULL)
         check(os.path.getsize(png) > 10000, "%s drew %s" % (script, png))
+
+# The mode-I panel's Griffith line follows the run's own material and size: on the
+# reference proportions the finite-element line scaled (E doubled, G_c four times:
+# stiffness x 2, delta_c x sqrt(2)); on others the fixed-grip strip's.
+if drawer is not None:
+    def griffith_line(name, sets):
+        panel = os.path.join(work, name)
+        command = [binary, os.path.join(source, "prm", "mode_i_panel.prm"),
+                   "--set", "Time/End time=1", "--set", "Output/Directory=" + panel]
+        for s in sets:
+            command += ["--set", s]
+        subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
+        out = subprocess.run([drawer, os.path.join(source, "scripts", "plot_mode_i.py"),
+                              panel, "--out", panel + ".png"], check=True,
+                             capture_output=True, text=True).stdout
+        line = next(l for l in out.splitlines() if l.startswith("Griffith:"))
+        words = line.replace(",", "").split()
+        return float(words[2]), float(words[4]), line
+
+    k, dc, _ = griffith_line("mode_i_reference", [])
+    check(abs(k - 0.990) < 1e-9 and abs(dc - 0.00651) < 1e-9,
+          "reference panel: stiffness %.6g, delta_c %.6g" % (k, dc))
+    k, dc, _ = griffith_line("mode_i_scaled", [
+        "Material 1/linear elastic/Young's modulus=2.12",
+        "Material 1/Fracture/Fracture energy=4e-4"])
+    check(abs(k / 1.98 - 1) < 1e-3 and abs(dc / (0.00651 * 2 ** 0.5) - 1) < 1e-3,
+          "E x 2, G_c x 4: stiffness %.6g, delta_c %.6g" % (k, dc))
+    k, dc, line = griffith_line("mode_i_wide", [
+        "Body 1/Shape=rectangle(0, 0, 1.5, 1)", "Grid/Upper corner=2, 1.1"])
+    E_prime = 1.06 / (1 - 0.333 ** 2)
+    check("strip" in line and abs(dc / (1e-4 / (2 * E_prime)) ** 0.5 - 1) < 1e-3
+          and abs(k / (E_prime * 1.5) - 1) < 1e-3, "other proportions: " + line)
 
 if failures:
     sys.exit("%d check(s) failed" % len(failures))

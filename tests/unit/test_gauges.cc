@@ -54,12 +54,18 @@ void check_homogeneous()
   const std::string c = dim == 2 ? "0.475, 0.175" : "0.475, 0.175, 0.275";
   const std::string d = dim == 2 ? "0.475, 0.875" : "0.475, 0.875, 0.275";
   prm.enter_subsection("Output");
-  prm.set("Opening gauges", "diagonal: " + a + ", " + b + "; upright: " + c + ", " + d);
+  // "wide" has a radius of its own; in 3D "column" stands for lines along z through
+  // (0.275, 0.325) and (0.725, 0.625), averaging through the lattice's depth.
+  std::string list = "diagonal: " + a + ", " + b + "; upright: " + c + ", " + d +
+                     "; wide: " + c + ", " + d + ", 0.11";
+  if (dim == 3)
+    list += "; column: 0.275, 0.325, 0.725, 0.625";
+  prm.set("Opening gauges", list);
   prm.set("Gauge radius", "0.06");
   prm.leave_subsection();
   OpeningGauges<dim> gauges;
   gauges.parse_parameters(prm, 0.1);
-  ASSERT_EQ(gauges.size(), 2u);
+  ASSERT_EQ(gauges.size(), dim == 2 ? 3u : 4u);
   gauges.check(p, nullptr);
   const std::vector<double> w = gauges.read(p, nullptr);
   const auto exact            = [&](const std::string &from, const std::string &to)
@@ -75,6 +81,22 @@ void check_homogeneous()
   EXPECT_NEAR(w[0], exact(a, b), 1e-12);
   EXPECT_NEAR(w[1], exact(c, d), 1e-12);
   EXPECT_GT(std::abs(w[0]), 1e-3);
+  EXPECT_NEAR(w[2], exact(c, d), 1e-12);
+  // Its radius, 2.2 lattice spacings, holds the sites with i^2 + j^2 (+ k^2) <= 4 about
+  // the point: 13 in 2D, 33 in 3D (unit masses); the shared 0.06 holds 5 and 7.
+  EXPECT_DOUBLE_EQ(gauges.mass_near(2, 0, p), dim == 2 ? 13.0 : 33.0);
+  EXPECT_DOUBLE_EQ(gauges.mass_near(1, 0, p), dim == 2 ? 5.0 : 7.0);
+  if (dim == 3)
+  {
+    // The opening between two lines: the displacement gradient along their x-y
+    // direction, the means over the depth taken at the lattice's mid-depth.
+    Tensor<1, dim> AB;
+    AB[0] = 0.45, AB[1] = 0.3;
+    Tensor<2, dim> H = F;
+    for (unsigned int i = 0; i < dim; ++i)
+      H[i][i] -= 1;
+    EXPECT_NEAR(w[3], (H * AB) * AB / AB.norm(), 1e-12);
+  }
 
   // A prescribed body's particles and ghosts are not gauged: moving them changes
   // nothing.

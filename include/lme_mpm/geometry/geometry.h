@@ -39,15 +39,25 @@ public:
   }
 };
 
-/// What GeometryRegistry keeps of one shape.
+/**
+ * What GeometryRegistry keeps of one shape: `name(a, b, ...)` with @p n_arguments
+ * numbers (or any_number, the shape checking its own list) handed to @p create; or,
+ * where @p create_from_text is set, the text between the parentheses as written (a
+ * file name and its options) handed to it.
+ */
 template <int dim>
 struct GeometryEntry
 {
   using Create =
       std::function<std::unique_ptr<Geometry<dim>>(const std::vector<double> &)>;
+  using CreateFromText                     = std::function<std::unique_ptr<Geometry<dim>>(
+      const std::string &, const std::string &)>;
+  static constexpr unsigned int any_number = static_cast<unsigned int>(-1);
   unsigned int n_arguments;
   std::string description;
   Create create;
+  /// Takes the arguments' text and the entry's name (for messages).
+  CreateFromText create_from_text = {};
 };
 
 /**

@@ -19,11 +19,13 @@ namespace lme_mpm
  * Opening gauges ("Output/Opening gauges"): each a pair of material points A and B,
  * given by their positions at t = 0, and its reading the change in their distance,
  * (u_B - u_A) . (B - A) / |B - A|, where u is the mass-weighted mean displacement
- * of the particles whose reference position lies within "Output/Gauge radius" of the
- * point. A clip gauge across a notch mouth reads the crack mouth opening (CMOD); one
- * across a disc's diameter its lateral expansion. Particles of bodies that move as
- * prescribed (rollers, platens) are not gauged. history.csv gets opening_<name>; a
- * loading servo (LoadingControl) may drive on a gauge.
+ * of the particles whose reference position lies within the gauge's radius (its own,
+ * or "Output/Gauge radius") of the point; in 3D a point given by x and y alone is a
+ * line along z, which averages through the thickness. A clip gauge across a notch mouth
+ * reads the crack mouth opening (CMOD); one across a disc's diameter its lateral
+ * expansion. Particles of bodies that move as prescribed (rollers, platens) are not
+ * gauged. history.csv gets opening_<name>; a loading servo (LoadingControl) may drive on
+ * a gauge.
  */
 template <int dim>
 class OpeningGauges
@@ -51,6 +53,15 @@ public:
   const std::string &name(unsigned int g) const { return gauges[g].name; }
   /// The names, comma separated (for messages).
   std::string names() const;
+  /// "A (x, y), B (x, y), radius r m" of gauge @p g, for messages.
+  std::string describe(unsigned int g) const;
+  /// The particle mass within the radius of end @p end (0: A, 1: B) of gauge @p g, over
+  /// this rank's particles.
+  double mass_near(unsigned int g, unsigned int end, const ParticleStore<dim> &p) const
+  {
+    const auto s = sums(p);
+    return s[4 * g + end];
+  }
 
   /**
    * Every gauge's reading. Sums over this rank's own particles (not ghosts) and,
@@ -68,6 +79,17 @@ private:
   {
     std::string name;
     Point<dim> a, b;
+    double radius = 0;
+    /// In 3D: A and B stand for lines along z (their z is 0 and ignored).
+    bool line = false;
+    /// Whether reference position @p x lies within the radius of point (or line) @p c.
+    bool near(const Point<dim> &x, const Point<dim> &c) const
+    {
+      double d2 = 0;
+      for (unsigned int d = 0; d < (line ? 2u : unsigned(dim)); ++d)
+        d2 += (x[d] - c[d]) * (x[d] - c[d]);
+      return d2 <= radius * radius;
+    }
   };
   /// Per gauge and end: mass, then mass-weighted displacement along the gauge.
   std::vector<double> sums(const ParticleStore<dim> &particles) const;

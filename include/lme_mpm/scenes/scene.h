@@ -7,6 +7,7 @@
 #include <lme_mpm/base/rank_reductions.h>
 #include <lme_mpm/base/registry.h>
 #include <lme_mpm/boundary/node_constraints.h>
+#include <lme_mpm/output/gauges.h>
 #include <lme_mpm/particles/particle_store.h>
 #include <lme_mpm/solver/run_parameters.h>
 
@@ -62,6 +63,12 @@ public:
                 const std::string &value, const std::string &owner);
   /// The value of @p entry (a path from the top level) now.
   std::string get(const std::string &entry) const;
+  /**
+   * Adds @p item to the ';'-separated list @p entry ('Output/Opening gauges') after
+   * what the file gave, unless the list holds it already (a resumed run's recorded
+   * parameters do).
+   */
+  void append_item(const std::string &entry, const std::string &item);
 
   /// The index (N - 1) of the "Body N" named @p name; throws naming @p owner if none.
   unsigned int body(const std::string &name, const std::string &owner) const;
@@ -112,6 +119,8 @@ struct SceneState
   const std::vector<Tensor<1, dim>> *contact_force_means = nullptr;
   /// The constrained node sets, with their reactions and impulses.
   const NodeConstraints<dim> *constraints = nullptr;
+  /// The opening gauges (Output/Opening gauges, with those the scene added).
+  const OpeningGauges<dim> *gauges = nullptr;
   /// After a step: sums and maxima over the MPI ranks (every rank calls them
   /// together; on one rank they return their argument). Null in a history row and at
   /// the end, which rank 0 alone sees.

@@ -168,12 +168,24 @@ const NodeConstraint<dim> &constraint_named(const SceneState<dim> &state,
                                             const std::string &name,
                                             const std::string &entry);
 
-/// The mass-weighted mean displacement of the particles of @p body whose reference
-/// position lies within @p radius of @p centre in the x-y plane (0 if none).
+/**
+ * Adds the opening gauge @p name to Output/Opening gauges: points @p a and @p b in the
+ * x-y plane (lines along z in 3D, so that it averages through the thickness), each
+ * averaging the particles within @p radius. Its reading is history.csv's
+ * opening_<name>, and a servo (Loading control/Gauge) may drive on it.
+ */
+void add_opening_gauge(EntryWriter &writer, const std::string &name, const Point<2> &a,
+                       const Point<2> &b, double radius);
+/// The reading of opening gauge @p name in a history row (all particles, rank 0).
 template <int dim>
-Tensor<1, dim> mean_displacement_near(const ParticleStore<dim> &particles,
-                                      unsigned int body, const Point<2> &centre,
-                                      double radius);
+double gauge_reading(const SceneState<dim> &state, const std::string &name);
+/**
+ * Throws ExcBadInput naming scene entry @p owner unless both points of opening gauge
+ * @p name hold particles (before the run; every rank holds all particles then).
+ */
+template <int dim>
+void require_gauge_particles(const SceneState<dim> &state, const std::string &name,
+                             const std::string &owner, const std::string &what);
 } // namespace scenes
 } // namespace lme_mpm
 

@@ -67,11 +67,16 @@ public:
   /// Console output: on rank 0 at a verbosity above 0.
   ConditionalOStream &console() { return pcout; }
 
-  /// The particles of the run: @p n of them (all ranks), @p mass kg, at the start.
-  void set_totals(std::size_t n, double mass)
+  /**
+   * The particles of the run: @p n of them (all ranks), @p mass kg, and each body's
+   * volume (m^3, by Body N/Name), at the start.
+   */
+  void set_totals(std::size_t n, double mass,
+                  std::vector<std::pair<std::string, double>> volumes)
   {
     n_particles  = n;
     initial_mass = mass;
+    body_volumes = std::move(volumes);
   }
   /**
    * Before the first step: the exact solution's norms, the directory (nothing is
@@ -168,6 +173,7 @@ private:
   mutable ParticleStore<dim> gathered;
   std::size_t n_particles = 0;
   double initial_mass     = 0;
+  std::vector<std::pair<std::string, double>> body_volumes;
 
   EnergyBalance<dim> energy;
   PeakForce<dim> peak_force;
