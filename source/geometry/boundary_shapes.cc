@@ -28,26 +28,26 @@ SegmentBoundary::SegmentBoundary(std::vector<Segment> s) : segments(std::move(s)
   const unsigned int n_strips = std::clamp<std::size_t>(segments.size() / 8, 1, 4096);
   strip_height                = (hi[1] - lo[1]) / n_strips;
   strips.resize(n_strips);
-  const auto strip = [&](const double y)
-  {
-    const double s = std::floor((y - lo[1]) / strip_height);
-    return static_cast<unsigned int>(std::clamp(s, 0.0, n_strips - 1.0));
-  };
   for (unsigned int i = 0; i < segments.size(); ++i)
   {
     const auto &seg = segments[i];
-    for (unsigned int k = strip(std::min(seg[0][1], seg[1][1]));
-         k <= strip(std::max(seg[0][1], seg[1][1])); ++k)
+    for (unsigned int k = strip_of(std::min(seg[0][1], seg[1][1]));
+         k <= strip_of(std::max(seg[0][1], seg[1][1])); ++k)
       strips[k].push_back(i);
   }
+}
+
+unsigned int SegmentBoundary::strip_of(const double y) const
+{
+  const double s = std::floor((y - lo[1]) / strip_height);
+  return static_cast<unsigned int>(std::clamp(s, 0.0, strips.size() - 1.0));
 }
 
 bool SegmentBoundary::inside(const double x, const double y) const
 {
   if (!(y >= lo[1] && y <= hi[1] && x >= lo[0] && x <= hi[0]))
     return false;
-  const double s = std::floor((y - lo[1]) / strip_height);
-  const auto k   = static_cast<unsigned int>(std::clamp(s, 0.0, strips.size() - 1.0));
+  const unsigned int k = strip_of(y);
   // Crossings of the ray towards +x; a segment counts with one end strictly above y,
   // so that a ray through a vertex meets its two segments once.
   bool in = false;
@@ -137,11 +137,6 @@ TriangleBoundary::TriangleBoundary(const std::vector<Triangle> &all)
       std::clamp(std::sqrt(triangles.size() / 2.0), 1.0, 512.0));
   bin_y = (hi[1] - lo[1]) / n_bins, bin_z = (hi[2] - lo[2]) / n_bins;
   bins.resize(n_bins * n_bins);
-  const auto bin = [&](const double v, const double l, const double w)
-  {
-    return static_cast<unsigned int>(
-        std::clamp(std::floor((v - l) / w), 0.0, n_bins - 1.0));
-  };
   for (unsigned int i = 0; i < triangles.size(); ++i)
   {
     const auto &t   = triangles[i];
@@ -149,10 +144,16 @@ TriangleBoundary::TriangleBoundary(const std::vector<Triangle> &all)
                  y1 = std::max({t[0][1], t[1][1], t[2][1]}),
                  z0 = std::min({t[0][2], t[1][2], t[2][2]}),
                  z1 = std::max({t[0][2], t[1][2], t[2][2]});
-    for (unsigned int j = bin(y0, lo[1], bin_y); j <= bin(y1, lo[1], bin_y); ++j)
-      for (unsigned int k = bin(z0, lo[2], bin_z); k <= bin(z1, lo[2], bin_z); ++k)
+    for (unsigned int j = bin_along(y0, 1); j <= bin_along(y1, 1); ++j)
+      for (unsigned int k = bin_along(z0, 2); k <= bin_along(z1, 2); ++k)
         bins[j + n_bins * k].push_back(i);
   }
+}
+
+unsigned int TriangleBoundary::bin_along(const double v, const unsigned int d) const
+{
+  const double b = std::floor((v - lo[d]) / (d == 1 ? bin_y : bin_z));
+  return static_cast<unsigned int>(std::clamp(b, 0.0, n_bins - 1.0));
 }
 
 bool TriangleBoundary::inside(const Point<3> &x) const
@@ -160,14 +161,8 @@ bool TriangleBoundary::inside(const Point<3> &x) const
   for (unsigned int d = 0; d < 3; ++d)
     if (!(x[d] >= lo[d] && x[d] <= hi[d]))
       return false;
-  const auto bin = [&](const double v, const double l, const double w)
-  {
-    return static_cast<unsigned int>(
-        std::clamp(std::floor((v - l) / w), 0.0, n_bins - 1.0));
-  };
   bool in = false;
-  for (const unsigned int i :
-       bins[bin(x[1], lo[1], bin_y) + n_bins * bin(x[2], lo[2], bin_z)])
+  for (const unsigned int i : bins[bin_along(x[1], 1) + n_bins * bin_along(x[2], 2)])
   {
     const Triangle &t = triangles[i];
     const double w[3] = {edge(t[1], t[2], x[1], x[2]), edge(t[2], t[0], x[1], x[2]),

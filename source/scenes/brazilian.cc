@@ -187,14 +187,13 @@ public:
 
   void check(const SceneState<dim> &state) const override
   {
-    const unsigned int d = body_index(state, disc, entry("Disc"));
+    (void)body_index(state, disc, entry("Disc"));
     (void)body_index(state, top, entry("Top strip"));
     (void)body_index(state, bottom, entry("Bottom strip"));
     AssertThrow(state.run->body_force.norm() == 0,
                 ExcBadInput("Problem/Body force",
                             "the Brazilian test has no gravity (its "
                             "weight is negligible against the load)"));
-    (void)d;
     // Both gauge points must hold particles, or the opening would read zero.
     require_gauge_particles(state, gauge_name, entry("Opening gauge length"), "the disc");
   }

@@ -386,6 +386,21 @@ std::map<std::string, double> RunOutput<dim>::energies() const
 }
 
 template <int dim>
+void RunOutput<dim>::record_totals()
+{
+  const ParticleStore<dim> &p = parts.particles;
+  n_particles                 = p.size();
+  initial_mass                = std::accumulate(p.mass.begin(), p.mass.end(), 0.0);
+  // Each body's volume as its particles hold it: what a body read from a mesh or a
+  // particle file is checked by.
+  body_volumes.clear();
+  for (const auto &name : parts.bodies.names())
+    body_volumes.emplace_back(name, 0.0);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    body_volumes[p.body_id[i]].second += p.initial_volume[i];
+}
+
+template <int dim>
 RunSummary RunOutput<dim>::summarise(const double wall, const unsigned int steps,
                                      const TimeStepControl &clock, const double t)
 {

@@ -8,7 +8,6 @@
 #include <lme_mpm/simulation/halo_reach.h>
 #include <lme_mpm/simulation/simulation.h>
 
-#include <numeric>
 #include <sstream>
 
 namespace lme_mpm
@@ -222,17 +221,7 @@ template <int dim>
 void Simulation<dim>::distribute()
 {
   n_particles = parts.particles.size();
-  // Each body's volume as its particles hold it: what a body read from a mesh or a
-  // particle file is checked by.
-  std::vector<std::pair<std::string, double>> volumes;
-  for (const auto &name : parts.bodies.names())
-    volumes.emplace_back(name, 0.0);
-  for (std::size_t p = 0; p < n_particles; ++p)
-    volumes[parts.particles.body_id[p]].second += parts.particles.initial_volume[p];
-  output.set_totals(
-      n_particles,
-      std::accumulate(parts.particles.mass.begin(), parts.particles.mass.end(), 0.0),
-      std::move(volumes));
+  output.record_totals();
   // The parts that sum or agree over the ranks (no-ops on one rank).
   parts.transfer.set_ranks(parts.ranks);
   parts.fracture.set_ranks(parts.ranks);

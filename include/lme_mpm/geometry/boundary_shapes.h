@@ -32,6 +32,9 @@ public:
   std::size_t size() const { return segments.size(); }
 
 private:
+  /// The strip holding height @p y (clamped to the strips).
+  unsigned int strip_of(double y) const;
+
   std::vector<Segment> segments;
   Point<2> lo, hi;
   double strip_height = 1;
@@ -56,6 +59,9 @@ public:
   std::size_t size() const { return triangles.size(); }
 
 private:
+  /// The bin along axis @p d (1: y, 2: z) holding coordinate @p v, clamped.
+  unsigned int bin_along(double v, unsigned int d) const;
+
   /// Triangles with a nonzero projection onto y-z, counter-clockwise there.
   std::vector<Triangle> triangles;
   Point<3> lo, hi;

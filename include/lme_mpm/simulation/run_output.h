@@ -68,16 +68,10 @@ public:
   ConditionalOStream &console() { return pcout; }
 
   /**
-   * The particles of the run: @p n of them (all ranks), @p mass kg, and each body's
-   * volume (m^3, by Body N/Name), at the start.
+   * Records the run's particles at the start, before they are distributed over the
+   * ranks: their number, mass and each body's volume (initial_volume_<body>).
    */
-  void set_totals(std::size_t n, double mass,
-                  std::vector<std::pair<std::string, double>> volumes)
-  {
-    n_particles  = n;
-    initial_mass = mass;
-    body_volumes = std::move(volumes);
-  }
+  void record_totals();
   /**
    * Before the first step: the exact solution's norms, the directory (nothing is
    * written before this), history.csv's header (or its continuation after a
