@@ -102,5 +102,37 @@ if drawer is not None:
     check("strip" in line and abs(dc / (1e-4 / (2 * E_prime)) ** 0.5 - 1) < 1e-3
           and abs(k / (E_prime * 1.5) - 1) < 1e-3, "other proportions: " + line)
 
+# The notched beam's figure draws the run's own curves: its CSV holds every history row,
+# the load at each is the loading roller's force, and the beam's damage is drawn from
+# the run's own corner and length (a beam moved and shortened from the shipped one).
+if drawer is not None:
+    beam = os.path.join(work, "beam")
+    subprocess.run([binary, os.path.join(source, "prm", "three_point_bending.prm"),
+                    "--set", "Grid/Cell size=0.005", "--set", "Time/End time=0.002",
+                    "--set", "Scene/three point bending/Notch width=0.005",
+                    "--set", "Scene/three point bending/CMOD gauge length=0.015",
+                    "--set", "Scene/three point bending/Beam corner=0.015, 0.015",
+                    "--set", "Scene/three point bending/Length=0.165",
+                    "--set", "Scene/three point bending/Span=0.12",
+                    "--set", "Output/Directory=" + beam], check=True,
+                   stdout=subprocess.DEVNULL)
+    table = os.path.join(work, "beam.csv")
+    subprocess.run([drawer, os.path.join(source, "scripts", "plot_three_point_bending.py"),
+                    beam, "--reference", "--csv", table, "--out", beam + ".png"],
+                   check=True, stdout=subprocess.DEVNULL)
+    import csv
+    with open(table) as f:
+        drawn = list(csv.DictReader(f))
+    with open(os.path.join(beam, "history.csv")) as f:
+        rows = list(csv.DictReader(f))
+    check(len(drawn) == len(rows), "beam: %d rows drawn of %d" % (len(drawn), len(rows)))
+    def same(a, b):
+        return abs(float(a) - float(b)) <= 1e-9 * max(abs(float(b)), 1e-12)
+    check(all(same(d["load"], r["force_load_mean_y"]) and same(d["cmod"], r["opening_cmod"])
+              for d, r in zip(drawn, rows)),
+        "beam: load and CMOD drawn are the run's force_load_mean_y and opening_cmod")
+    check(max(float(d["load"]) for d in drawn) > 100, "beam: the beam is loaded")
+    check(os.path.getsize(beam + ".png") > 10000, "plot_three_point_bending.py drew a figure")
+
 if failures:
     sys.exit("%d check(s) failed" % len(failures))
