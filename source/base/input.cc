@@ -140,6 +140,44 @@ bool depends_on_space_or_time(const std::string &expr)
   return false;
 }
 
+std::string quote_entry(const std::string &entry)
+{
+  if (!entry.empty() && entry.front() == '\'')
+    return entry;
+  return "'" + entry + "'";
+}
+
+std::string EntryValue::describe() const
+{
+  if (std::isnan(value))
+    return "the entries of '" + entry + "'";
+  std::ostringstream s;
+  const std::string space = unit.empty() ? "" : " " + unit;
+  s << "'" << entry << "' = " << value << space;
+  if (!physical())
+    s << " (outside its physical range " << low << " to " << high << space << ")";
+  return s.str();
+}
+
+std::vector<EntryValue> unphysical_first(std::vector<EntryValue> values)
+{
+  std::stable_partition(values.begin(), values.end(),
+                        [](const EntryValue &v) { return !v.physical(); });
+  return values;
+}
+
+std::string describe_entries(const std::vector<EntryValue> &values)
+{
+  std::string s;
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    if (i > 0)
+      s += i + 1 == values.size() ? " and " : ", ";
+    s += values[i].describe();
+  }
+  return s;
+}
+
 void require_range(const double value, const double lo, const double hi, const bool open,
                    const std::string &entry)
 {

@@ -115,8 +115,12 @@ public:
     {
       const double limit = c.p_wave_modulus / (f_t * law->max_slope());
       std::ostringstream msg;
-      msg << "h_eps = " << band_width << " m is beyond the snap-back limit " << limit
-          << " m (about 2 E G_F / f_t^2 for linear softening)";
+      msg << "'" << c.section << "/Band width' = " << band_width
+          << " m is beyond the snap-back limit M / (f_t max|g'|) = " << limit
+          << " m (about 2 E G_F / f_t^2 for linear softening), from the P-wave modulus "
+          << "M = " << c.p_wave_modulus << " Pa (the material's elastic entries), '"
+          << c.section << "/Tensile strength' = " << f_t
+          << " Pa and the softening law's critical opening w_c = " << w_c << " m";
       AssertThrow(band_width < limit, ExcBadInput(c.section + "/Band width", msg.str()));
     }
   }

@@ -40,7 +40,8 @@ LinearElastic<dim>::LinearElastic(ParameterHandler &prm, const MaterialContext &
   input::require_range(E, 0, std::numeric_limits<double>::max(), true,
                        context.section + "/Young's modulus");
   input::require_range(nu, -1, 0.5, true, context.section + "/Poisson's ratio");
-  rho = context.density;
+  rho     = context.density;
+  section = context.section;
   setup(context.plane);
 }
 
@@ -67,6 +68,13 @@ template <int dim>
 double LinearElastic<dim>::wave_speed() const
 {
   return std::sqrt((lambda_eff + 2 * mu) / rho);
+}
+
+template <int dim>
+std::vector<input::EntryValue> LinearElastic<dim>::wave_speed_inputs() const
+{
+  return {{section + "/Young's modulus", E, "Pa", 1e3, 1e13},
+          {section + "/Poisson's ratio", nu, "", -1, 0.5}};
 }
 
 template <int dim>

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace lme_mpm
 {
@@ -44,7 +45,7 @@ void MaterialSet<dim>::declare_parameters(ParameterHandler &prm,
 template <int dim>
 void MaterialSet<dim>::parse_parameters(ParameterHandler &prm,
                                         const unsigned int n_materials,
-                                        const bool plane_stress)
+                                        const bool plane_stress, const bool si_units)
 {
   MaterialContext context;
   context.dim = dim;
@@ -52,6 +53,7 @@ void MaterialSet<dim>::parse_parameters(ParameterHandler &prm,
       plane_stress ? PlaneAssumption::plane_stress : PlaneAssumption::plane_strain;
   EntryList list(prm, EntryList::Mode::parse);
   models.clear();
+  warnings.clear();
   for (unsigned int m = 0; m < n_materials; ++m)
   {
     const std::string section = input::subsection_name("Material", m);
@@ -64,10 +66,15 @@ void MaterialSet<dim>::parse_parameters(ParameterHandler &prm,
     models.push_back(MaterialRegistry<dim>::instance().create(in.model, prm, context));
     // In range one by one, the entries may still give a useless wave speed (a huge
     // modulus over a tiny density), and with it the time step.
+    const auto inputs = inputs_of(m);
+    for (const auto &v : inputs)
+      if (si_units && !v.physical())
+        warnings.push_back(v.describe() + ": the run goes on, but check the value");
     const double c = models.back()->wave_speed();
     AssertThrow(std::isfinite(c) && c > 0,
-                ExcBadInput(context.section + " with " + section + "/Density",
-                            "they give the P-wave speed c_P = " + format_double(c) +
+                ExcBadInput(inputs.front().entry,
+                            input::describe_entries(inputs) +
+                                " give the P-wave speed c_P = " + format_double(c) +
                                 " m/s; it must be finite and positive"));
     prm.leave_subsection();
   }
@@ -83,17 +90,26 @@ double MaterialSet<dim>::max_wave_speed() const
 }
 
 template <int dim>
-std::string MaterialSet<dim>::wave_speed_entries() const
+std::vector<input::EntryValue> MaterialSet<dim>::inputs_of(const unsigned int m) const
+{
+  const std::string section             = input::subsection_name("Material", m);
+  std::vector<input::EntryValue> inputs = models[m]->wave_speed_inputs();
+  if (inputs.empty()) // a plug-in that lists none: its subsection stands for them
+    inputs.push_back({section + "/" + models[m]->name(),
+                      std::numeric_limits<double>::quiet_NaN(), "", 0, 0});
+  inputs.insert(inputs.begin() + (inputs.size() > 1 ? 1 : 0),
+                {section + "/Density", models[m]->density(), "kg/m^3", 1, 1e5});
+  return input::unphysical_first(inputs);
+}
+
+template <int dim>
+std::vector<input::EntryValue> MaterialSet<dim>::wave_speed_inputs() const
 {
   unsigned int fastest = 0;
   for (unsigned int m = 0; m < models.size(); ++m)
     if (!(models[m]->wave_speed() <= models[fastest]->wave_speed()))
       fastest = m;
-  if (models.empty())
-    return "the materials' entries";
-  const std::string material = input::subsection_name("Material", fastest);
-  return "'" + material + "/Density' and the entries of '" + material + "/" +
-         models[fastest]->name() + "'";
+  return models.empty() ? std::vector<input::EntryValue>{} : inputs_of(fastest);
 }
 
 template <int dim>

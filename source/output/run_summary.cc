@@ -25,6 +25,7 @@ void RunSummary::write(const std::string &file, const std::string &shape_functio
   json["shape_function"] = shape_function;
   json["state_checksum"] = hex.str();
   json["dimension"]      = dim;
+  json["warnings"]       = warnings;
   for (const auto &[name, value] : values)
   {
     if (std::isfinite(value))

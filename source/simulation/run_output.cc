@@ -47,6 +47,10 @@ void RunOutput<dim>::add_columns()
          if (parts.fracture.active())
            r["dissipated_energy"] = energy.measure(all, parts.materials).dissipated;
        }});
+  columns.push_back({[this](std::ostream &out) { fast_particles.write_header(out); },
+                     [this](std::ostream &out, const ParticleStore<dim> &, double)
+                     { fast_particles.write_row(out); },
+                     nullptr});
   columns.push_back({[&p](std::ostream &out) { p.constraints.write_header(out); },
                      [&p](std::ostream &out, const ParticleStore<dim> &, double)
                      { p.constraints.write_row(out); },
@@ -218,6 +222,8 @@ void RunOutput<dim>::prepare(const bool resumed, const TimeStepControl &clock)
         << clock.planned_steps() << " steps"
         << (run.particle_travel > 0 ? " (more while particles travel fast)" : "") << ", "
         << parts.transfer.threads() << " thread(s)" << std::endl;
+  for (const auto &w : parts.materials.input_warnings())
+    pcout << "lme-mpm: warning: " << w << std::endl;
   if (removed > 0)
     pcout << "lme-mpm: removed " << removed << " files of an earlier run from '"
           << output_directory << "'" << std::endl;
@@ -237,8 +243,11 @@ const std::vector<Tensor<1, dim>> &RunOutput<dim>::body_forces()
 
 template <int dim>
 void RunOutput<dim>::after_step(const double external_work, const double dt,
-                                const double t)
+                                const double t, const double max_speed)
 {
+  if (fast_particles.observe(max_speed))
+    pcout << "lme-mpm: warning at t = " << t << ": " << fast_particles.warning()
+          << std::endl;
   energy.add_external_work(external_work);
   const Energies e = energy.measure(parts.particles, parts.materials, parts.ranks);
   energy.track(e, false);
@@ -398,6 +407,25 @@ void RunOutput<dim>::record_totals()
     body_volumes.emplace_back(name, 0.0);
   for (std::size_t i = 0; i < p.size(); ++i)
     body_volumes[p.body_id[i]].second += p.initial_volume[i];
+  // The largest free body's bounding-box diagonal: the length a P-wave crosses.
+  std::vector<Point<dim>> lo(body_volumes.size()), hi(body_volumes.size());
+  std::vector<bool> seen(body_volumes.size(), false);
+  for (std::size_t i = 0; i < p.size(); ++i)
+  {
+    const unsigned int b = p.body_id[i];
+    for (unsigned int d = 0; d < dim; ++d)
+    {
+      lo[b][d] = seen[b] ? std::min(lo[b][d], p.position[i][d]) : p.position[i][d];
+      hi[b][d] = seen[b] ? std::max(hi[b][d], p.position[i][d]) : p.position[i][d];
+    }
+    seen[b] = true;
+  }
+  double transit_length = 0;
+  for (unsigned int b = 0; b < lo.size(); ++b)
+    if (seen[b] && !parts.bodies.prescribed(b))
+      transit_length = std::max(transit_length, lo[b].distance(hi[b]));
+  fast_particles.set_up(parts.shape_function->name(), parts.grid.min_spacing(),
+                        parts.materials.max_wave_speed(), transit_length);
 }
 
 template <int dim>
@@ -422,6 +450,7 @@ RunSummary RunOutput<dim>::summarise(const double wall, const unsigned int steps
   results["travel_limited_steps"]      = clock.limited_steps();
   results["particle_steps_per_second"] = n_particles * double(steps) / wall;
   results["max_energy_drift"]          = energy.max_drift();
+  results["max_fast_particle_cells"]   = fast_particles.max();
   results["max_energy_drift_absolute"] = energy.max_absolute_drift();
   results["energy_scale"]              = energy.scale();
   stages.add_results(results);
@@ -458,7 +487,10 @@ RunSummary RunOutput<dim>::summarise(const double wall, const unsigned int steps
     write_polylines(output_directory + "/cracks.csv", parts.cracks.polylines());
     results["crack_second_fields"] = parts.cracks.n_crack_nodes();
   }
-  summary.values = results;
+  summary.values   = results;
+  summary.warnings = parts.materials.input_warnings();
+  if (!fast_particles.warning().empty())
+    summary.warnings.push_back(fast_particles.warning());
   return summary;
 }
 
@@ -531,6 +563,7 @@ void RunOutput<dim>::serialize(Archive &ar)
   ar(next_time, next_particle_time, next_grid_time);
   ar(row_step, particle_step, grid_step, any_row, any_particle_file, any_grid_file);
   peak_force.serialize(ar);
+  fast_particles.serialize(ar);
   contact_means.serialize(ar);
   AssertThrow(contact_means.peak().size() == parts.bodies.size(),
               ExcMessage("the checkpoint holds another number of bodies"));

@@ -43,12 +43,13 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
   setup_scene(prm, counts);
   parts.grid.parse_parameters(prm);
   parts.cracks.parse_parameters(prm, counts.bodies);
-  parts.materials.parse_parameters(prm, counts.materials, parts.parameters.plane_stress);
+  parts.materials.parse_parameters(prm, counts.materials, parts.parameters.plane_stress,
+                                   parts.parameters.units == "SI");
   parts.fracture.parse_parameters(prm, parts.materials, parts.grid,
                                   parts.parameters.thickness);
   const TimeStepping ts = stable_time_step(parts.parameters, parts.grid.min_spacing(),
                                            parts.materials.max_wave_speed(),
-                                           parts.materials.wave_speed_entries());
+                                           parts.materials.wave_speed_inputs());
   clock.set_up(ts, parts.parameters.end_time, parts.parameters.particle_travel,
                parts.grid.min_spacing());
   dt = ts.dt;
@@ -258,7 +259,7 @@ void Simulation<dim>::step()
   max_speed = result.max_speed;
   // The servo reads its gauge after the step and sets the devices' speed for the next.
   parts.control.update(parts.particles, &parts.ranks, t, dt);
-  output.after_step(result.external_work, dt, t);
+  output.after_step(result.external_work, dt, t, max_speed);
   guard.stop_if_unstable(result.first_bad, step_count, t);
   stepper.exchange_particles();
 }

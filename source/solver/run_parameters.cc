@@ -53,6 +53,11 @@ void RunParameters<dim>::entries(EntryList &list)
   list.add("Plane assumption", plane_assumption, "plane strain",
            Patterns::Selection("plane strain|plane stress"),
            "How a 2D model treats the out-of-plane direction.");
+  list.add("Units", units, "SI", Patterns::Selection("SI|unitless"),
+           "The units of the file's numbers. 'SI': a material entry outside the "
+           "range physical for solids (Young's modulus 1e3 to 1e13 Pa, density 1 to "
+           "1e5 kg/m^3) is named in a warning. 'unitless': a scaled problem (the "
+           "mode-I panel), whose values no range applies to.");
   list.add("Body force", body_force_text, "0, 0, 0", Patterns::Anything(),
            "Body force per unit mass (m/s^2), dim components (extra ones "
            "ignored), for example '0, -9.81'.");
@@ -209,7 +214,8 @@ void RunParameters<dim>::parse_parameters(ParameterHandler &prm)
 
 template <int dim>
 TimeStepping stable_time_step(const RunParameters<dim> &run, const double h_min,
-                              const double c_max, const std::string &wave_speed_entries)
+                              const double c_max,
+                              const std::vector<input::EntryValue> &wave_speed_inputs)
 {
   TimeStepping ts;
   const double dt_wave = h_min / c_max;
@@ -217,7 +223,7 @@ TimeStepping stable_time_step(const RunParameters<dim> &run, const double h_min,
   {
     std::ostringstream msg;
     msg << "dt = " << run.fixed_time_step
-        << " s exceeds the stability limit Maximum CFL * h_min / "
+        << " s exceeds the stability limit 'Time/Maximum CFL' * h_min / "
         << "c_P = " << run.max_cfl * dt_wave << " s (h_min = " << h_min
         << " m, c_P = " << c_max << " m/s)";
     AssertThrow(run.fixed_time_step <= run.max_cfl * dt_wave * (1 + 1e-12),
@@ -236,28 +242,27 @@ TimeStepping stable_time_step(const RunParameters<dim> &run, const double h_min,
     }
     ts.dt = run.cfl * dt_wave;
   }
-  {
-    std::ostringstream msg;
-    msg << "with the grid's smallest spacing h_min = " << h_min
-        << " m and the largest P-wave speed c_P = " << c_max
-        << " m/s, the stable time step is " << ts.dt << " s";
-    AssertThrow(std::isfinite(ts.dt) && ts.dt > 0,
-                ExcBadInput(wave_speed_entries + " (with Time/CFL or Time/Time step)",
-                            msg.str()));
-  }
+  // Where the wave speed makes the step useless, the entries behind it are named with
+  // their values, an unphysical one first and blamed.
+  const std::string blamed = wave_speed_inputs.empty() ? "the materials' entries"
+                                                       : wave_speed_inputs.front().entry;
+  std::ostringstream origin;
+  if (!wave_speed_inputs.empty())
+    origin << input::describe_entries(wave_speed_inputs) << " give ";
+  origin << "the P-wave speed c_P = " << c_max
+         << " m/s; with the grid's smallest spacing "
+         << "h_min = " << h_min << " m the stable time step is " << ts.dt << " s";
+  AssertThrow(std::isfinite(ts.dt) && ts.dt > 0, ExcBadInput(blamed, origin.str()));
   // The step does not depend on the end time, so that a run can be extended: it ends
   // with the first whole step at or past the end time (in at least one step). The
   // count is checked as a double, before it is converted.
   const double steps = std::max(1.0, std::ceil(run.end_time / ts.dt - 1e-9));
   {
     std::ostringstream msg;
-    msg << "End time " << run.end_time << " s at dt = " << ts.dt
-        << " s (from h_min = " << h_min << " m and c_P = " << c_max
-        << " m/s, the materials' P-wave speed) needs " << steps
-        << " steps, more than the 2e9 allowed: check the wave speed's entries, or the "
-           "grid's spacing, or Time/End time";
-    AssertThrow(steps < 2e9,
-                ExcBadInput(wave_speed_entries + " (with Time/End time)", msg.str()));
+    msg << origin.str() << ", and 'Time/End time' = " << run.end_time << " s needs "
+        << steps << " steps, more than the 2e9 allowed: check these entries, the grid's "
+        << "spacing or the end time";
+    AssertThrow(steps < 2e9, ExcBadInput(blamed, msg.str()));
   }
   ts.n_steps = static_cast<unsigned int>(steps);
   return ts;
@@ -266,7 +271,7 @@ TimeStepping stable_time_step(const RunParameters<dim> &run, const double h_min,
 template struct RunParameters<2>;
 template struct RunParameters<3>;
 template TimeStepping stable_time_step(const RunParameters<2> &, double, double,
-                                       const std::string &);
+                                       const std::vector<input::EntryValue> &);
 template TimeStepping stable_time_step(const RunParameters<3> &, double, double,
-                                       const std::string &);
+                                       const std::vector<input::EntryValue> &);
 } // namespace lme_mpm

@@ -112,6 +112,10 @@ const std::vector<BadInput> bad_inputs = {
     {{"Material 1/Fracture/Model=eigensoftening",
       "Material 1/Fracture/Tensile strength=0"},
      "Tensile strength"},
+    {{"Material 1/Fracture/Model=eigensoftening", "Material 1/Fracture/Band width=10"},
+     "'Material 1/Fracture/Band width' = 10 m is beyond the snap-back limit M / (f_t "
+     "max|g'|) = 0.00222222 m (about 2 E G_F / f_t^2 for linear softening), from the "
+     "P-wave modulus M = 1e+08 Pa"},
     {{"Material 1/Fracture/Model=eigenerosion", "Material 1/Fracture/Epsilon factor=0.3"},
      "smaller than the particle spacing"},
     {{"Cracks/Polylines=0, 0.5, 0.25"},
@@ -121,12 +125,16 @@ const std::vector<BadInput> bad_inputs = {
     {{"Cracks/Polylines=0, 0.5, 0.2, x"}, "Cracks/Polylines"},
     // Each entry in range, what they give together not: the time step, the step count,
     // the grid's memory, particle masses, functions at t = 0.
-    // The wave speed made the step useless: the material's entries are named.
+    // The wave speed made the step useless: the entries behind it are named with their
+    // values, the unphysical one first.
     {{"Material 1/Density=1e-300"},
-     "'Material 1/Density' and the entries of 'Material 1/linear elastic' (with "
-     "Time/End time)': End time"},
+     "Invalid input for 'Material 1/Density': 'Material 1/Density' = 1e-300 kg/m^3 "
+     "(outside its physical range 1 to 100000 kg/m^3), 'Material 1/linear "
+     "elastic/Young's modulus' = "},
     {{"Material 1/linear elastic/Young's modulus=1e300"},
-     "entries of 'Material 1/linear elastic' (with Time/End time)': End time 0.0126"},
+     "Invalid input for 'Material 1/linear elastic/Young's modulus': 'Material 1/linear "
+     "elastic/Young's modulus' = 1e+300 Pa (outside its physical range 1000 to 1e+13 "
+     "Pa), 'Material 1/Density' = "},
     {{"Grid/Cell size=1e-9"}, "Grid/Cell size': a grid of"},
     {{"Grid/Step sizes x=1e12*1e-12"}, "Grid/Step sizes x': a grid of"},
     {{"Problem/Thickness=1e-300", "Material 1/Density=1e-300",
@@ -150,6 +158,8 @@ TEST(BadInput, EachCaseFailsWithItsOwnMessageAndWritesNothing)
     EXPECT_NE(msg.find(bad.expected), std::string::npos)
         << "override '" << bad.overrides[0] << "' gave: '" << msg << "'";
     EXPECT_FALSE(std::filesystem::exists(out)) << bad.overrides[0] << " wrote output";
+    // One quoting style: an entry is quoted once.
+    EXPECT_EQ(msg.find("''"), std::string::npos) << bad.overrides[0] << ": " << msg;
     messages.insert(msg);
   }
   EXPECT_GE(bad_inputs.size(), 30u);
@@ -338,51 +348,44 @@ TEST(RunGuards, StepLimitEndsStoppedNotFailed)
   EXPECT_EQ(WEXITSTATUS(std::system(cmd.c_str())), 0);
 }
 
-TEST(RunGuards, UnstableRunStopsWithDiagnosticAndKeepsItsOutput)
+namespace
 {
-  // CFL 1.9 is beyond the explicit limit: the bar blows up. The run must stop with the
-  // step, time, particle and cause, keep history.csv and the particle files, and say
-  // 'aborted' in summary.json. (Without the travel limit, which would shorten the
-  // steps as the particles speed up: the energy guard below stops that run.)
-  const std::string out = lme_mpm_test::scratch("unstable");
+/// The vibrating bar at CFL 1.9, beyond the explicit limit, with the travel limit
+/// @p travel: the run must stop with @p cause and the step, time and remedy, keep
+/// history.csv (header, t = 0 and the row of the failure) and the particle files, and
+/// say 'aborted' in summary.json.
+void expect_blow_up_stopped(const std::string &tag, const std::string &travel,
+                            const std::string &cause)
+{
+  const std::string out = lme_mpm_test::scratch(tag);
   const std::string msg = lme_mpm_test::run_error(
       lme_mpm_test::scene("vibrating_bar.prm"),
       {"Time/Maximum CFL=2", "Time/CFL=1.9", "Time/Mass matrix corrections=0",
-       "Output/Output interval=0.0005", "Time/Particle travel per step=0"},
+       "Output/Output interval=0.0005", "Time/Particle travel per step=" + travel},
       out);
   EXPECT_NE(msg.find("Run stopped at step"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("particle"), std::string::npos) << msg;
+  EXPECT_NE(msg.find(cause), std::string::npos) << msg;
   EXPECT_NE(msg.find("lower the CFL number"), std::string::npos) << msg;
-  ASSERT_TRUE(std::filesystem::exists(out + "/history.csv"));
   ASSERT_TRUE(std::filesystem::exists(out + "/particles.pvd"));
-  std::ifstream history(out + "/history.csv");
-  std::string line;
-  unsigned int rows = 0;
-  while (std::getline(history, line))
-    ++rows;
-  EXPECT_GE(rows, 3u); // header, t = 0, and the row written at the failure
-  std::ifstream summary(out + "/summary.json");
-  std::stringstream text;
-  text << summary.rdbuf();
-  EXPECT_NE(text.str().find("\"status\": \"aborted\""), std::string::npos) << text.str();
+  const std::string history = lme_mpm_test::file_text(out + "/history.csv");
+  EXPECT_GE(std::count(history.begin(), history.end(), '\n'), 3);
+  const std::string summary = lme_mpm_test::file_text(out + "/summary.json");
+  EXPECT_NE(summary.find("\"status\": \"aborted\""), std::string::npos) << summary;
+}
+} // namespace
+
+TEST(RunGuards, UnstableRunStopsWithDiagnosticAndKeepsItsOutput)
+{
+  // Without the travel limit, which would shorten the steps as the particles speed
+  // up, a particle moves half a cell in one step: the particle guard names it.
+  expect_blow_up_stopped("unstable", "0", "particle");
 }
 
 TEST(RunGuards, RunThatBlewUpStopsOnItsEnergyUnderTheTravelLimit)
 {
-  // The same blow-up with the travel limit on: the limit shortens the steps as the
-  // particles speed up and would carry the wrecked bar to the end time; the energy
-  // guard stops it as unstable instead.
-  const std::string out = lme_mpm_test::scratch("unstable_limited");
-  const std::string msg = lme_mpm_test::run_error(
-      lme_mpm_test::scene("vibrating_bar.prm"),
-      {"Time/Maximum CFL=2", "Time/CFL=1.9", "Time/Mass matrix corrections=0",
-       "Output/Output interval=0.0005", "Time/Particle travel per step=0.01"},
-      out);
-  EXPECT_NE(msg.find("Run stopped at step"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("the total energy has drifted by"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("lower the CFL number"), std::string::npos) << msg;
-  const std::string summary = lme_mpm_test::file_text(out + "/summary.json");
-  EXPECT_NE(summary.find("\"status\": \"aborted\""), std::string::npos) << summary;
+  // With the limit on, the shortened steps would carry the wrecked bar to the end
+  // time; the energy guard stops it as unstable instead.
+  expect_blow_up_stopped("unstable_limited", "0.01", "the total energy has drifted by");
 }
 
 TEST(Documentation, ParametersPageIsCurrent)

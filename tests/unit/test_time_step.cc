@@ -67,9 +67,35 @@ TEST(StableTimeStep, EveryImpossibleStepNamesItsEntry)
   run.cfl = 0.3;
   // 3e10 steps.
   EXPECT_NE(error_of(run, 1e-7, 1e4).find("Time/End time"), std::string::npos);
-  // A wave speed that is not finite.
-  EXPECT_NE(error_of(run, 0.01, std::numeric_limits<double>::infinity()).find("Time/CFL"),
-            std::string::npos);
+  // A wave speed that is not finite: the materials are blamed.
+  const std::string infinite =
+      error_of(run, 0.01, std::numeric_limits<double>::infinity());
+  EXPECT_EQ(infinite.rfind("Invalid input for 'the materials' entries': the P-wave "
+                           "speed c_P = inf m/s",
+                           0),
+            0u)
+      << infinite;
+  // With the entries behind the wave speed: the unphysical one named first, with its
+  // value.
+  const std::vector<input::EntryValue> inputs =
+      input::unphysical_first({{"Material 1/Density", 1000, "kg/m^3", 1, 1e5},
+                               {"Material 1/E", 1e30, "Pa", 1e3, 1e13}});
+  std::string message;
+  try
+  {
+    stable_time_step(run, 0.01, 3e13, inputs);
+  }
+  catch (const std::exception &e)
+  {
+    message = input::concise_message(e);
+  }
+  EXPECT_EQ(
+      message.rfind("Invalid input for 'Material 1/E': 'Material 1/E' = 1e+30 Pa "
+                    "(outside its physical range 1000 to 1e+13 Pa) and 'Material "
+                    "1/Density' = 1000 kg/m^3 give the P-wave speed c_P = 3e+13 m/s",
+                    0),
+      0u)
+      << message;
 }
 
 TEST(TimeStepControl, SlowParticlesTakeTheWaveStepsAndTheLastLandsOnTheEnd)

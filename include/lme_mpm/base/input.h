@@ -13,9 +13,16 @@
 
 namespace lme_mpm
 {
+namespace input
+{
+/// @p entry in single quotes, unless it is a phrase that quotes its entries itself
+/// ("'A' and 'B'"): every message quotes an entry once.
+std::string quote_entry(const std::string &entry);
+} // namespace input
+
 /// An input value that is well formed but not allowed; the message names the entry.
 DeclException2(ExcBadInput, std::string, std::string,
-               << "Invalid input for '" << arg1 << "': " << arg2);
+               << "Invalid input for " << input::quote_entry(arg1) << ": " << arg2);
 
 namespace input
 {
@@ -38,6 +45,32 @@ struct Call
   std::vector<double> args;
 };
 Call parse_call(const std::string &text, const std::string &entry);
+
+/**
+ * An entry's value with its unit and the range in which it is physical for the
+ * materials this code is for (documented beside the entry). A message about a
+ * quantity derived from several entries names them with their values, and an entry
+ * outside its range first: that one is the likely typing error.
+ */
+struct EntryValue
+{
+  /// The entry's path, or a subsection whose entries stand together (value NaN).
+  std::string entry;
+  double value = 0;
+  std::string unit;
+  double low = 0, high = 0;
+
+  bool physical() const { return value != value || (value >= low && value <= high); }
+  /// "'E' = 1e+300 Pa (outside its physical range 1000 to 1e+13 Pa)", or "the
+  /// entries of 'S'" for a value NaN.
+  std::string describe() const;
+};
+
+/// @p values with the unphysical ones first (stable otherwise).
+std::vector<EntryValue> unphysical_first(std::vector<EntryValue> values);
+
+/// "'A' = 1 Pa, 'B' = 2 kg/m^3 and 'C' = 0.2", in the order given.
+std::string describe_entries(const std::vector<EntryValue> &values);
 
 /// Splits on a separator, trimming blanks and dropping empty pieces.
 std::vector<std::string> split(const std::string &text, char separator);

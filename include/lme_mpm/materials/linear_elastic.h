@@ -26,6 +26,9 @@ public:
   std::string name() const override { return "linear elastic"; }
   double density() const override { return rho; }
   double wave_speed() const override;
+  /// Young's modulus (physical from 1e3 to 1e13 Pa: foams to diamond) and Poisson's
+  /// ratio.
+  std::vector<input::EntryValue> wave_speed_inputs() const override;
   void update_stress(ParticleStore<dim> &particles, std::size_t begin, std::size_t end,
                      unsigned int material_id) const override;
   double strain_energy(const ParticleStore<dim> &particles, std::size_t begin,
@@ -35,6 +38,8 @@ private:
   void setup(PlaneAssumption plane);
 
   double rho = 0, E = 0, nu = 0, mu = 0, lambda_eff = 0;
+  /// "Material N/linear elastic", for messages.
+  std::string section = "Material/linear elastic";
 };
 } // namespace materials
 } // namespace lme_mpm

@@ -3,10 +3,12 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <lme_mpm/base/input.h>
 #include <lme_mpm/base/registry.h>
 #include <lme_mpm/particles/particle_store.h>
 
 #include <string>
+#include <vector>
 
 namespace lme_mpm
 {
@@ -46,6 +48,13 @@ public:
 
   /// Fastest elastic wave speed at the reference density (m/s), for the time step.
   virtual double wave_speed() const = 0;
+
+  /**
+   * The model's entries that set wave_speed(), with their values and physical ranges
+   * (the density is the material set's): messages about the time step name them. A
+   * model that lists none is named by its subsection.
+   */
+  virtual std::vector<input::EntryValue> wave_speed_inputs() const { return {}; }
 
   /**
    * Updates `stress` (and any internal state) of the particles in [begin, end) that

@@ -22,16 +22,20 @@ class MaterialSet
 public:
   /// Declares "Material 1" ... "Material n": model, density and the models' entries.
   static void declare_parameters(ParameterHandler &prm, unsigned int n_materials);
+  /// With @p si_units, an entry outside its physical range is named in
+  /// input_warnings().
   void parse_parameters(ParameterHandler &prm, unsigned int n_materials,
-                        bool plane_stress);
+                        bool plane_stress, bool si_units = true);
 
   unsigned int size() const { return models.size(); }
   const Material<dim> &operator[](const unsigned int m) const { return *models[m]; }
   /// The fastest P-wave speed of all materials (m/s).
   double max_wave_speed() const;
-  /// The entries that set max_wave_speed(), for messages: "'Material 2/Density' and
-  /// the entries of 'Material 2/linear elastic'".
-  std::string wave_speed_entries() const;
+  /// The entries that set max_wave_speed() with their values, unphysical ones
+  /// first, for messages.
+  std::vector<input::EntryValue> wave_speed_inputs() const;
+  /// One line per entry outside its physical range (the run goes on).
+  const std::vector<std::string> &input_warnings() const { return warnings; }
 
   /// Updates the stress of [begin, end), one call per material.
   void update_stress(ParticleStore<dim> &particles, const std::size_t begin,
@@ -45,7 +49,11 @@ public:
                        std::size_t end) const;
 
 private:
+  /// Material @p m's density and model entries, unphysical first.
+  std::vector<input::EntryValue> inputs_of(unsigned int m) const;
+
   std::vector<std::unique_ptr<Material<dim>>> models;
+  std::vector<std::string> warnings;
 };
 } // namespace lme_mpm
 

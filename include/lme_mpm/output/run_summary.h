@@ -26,6 +26,12 @@ struct RunSummary
   std::string stop_reason;
   std::string message;
   std::map<std::string, double> values;
+  /**
+   * What the user should know about results that ran to their end (an entry outside
+   * its physical range, particles crossing cells fast on linear or uGIMP functions):
+   * summary.json's "warnings" list, one sentence each, printed on the console too.
+   */
+  std::vector<std::string> warnings;
   /// How the run was started (summary.json's "run" object).
   RunRecord record;
 

@@ -8,6 +8,7 @@
 #include <lme_mpm/base/stage_timer.h>
 #include <lme_mpm/output/energy_balance.h>
 #include <lme_mpm/output/exact_solution.h>
+#include <lme_mpm/output/fast_particles.h>
 #include <lme_mpm/output/force_means.h>
 #include <lme_mpm/output/grid_output.h>
 #include <lme_mpm/output/history_file.h>
@@ -69,7 +70,8 @@ public:
 
   /**
    * Records the run's particles at the start, before they are distributed over the
-   * ranks: their number, mass and each body's volume (initial_volume_<body>).
+   * ranks: their number, mass, each body's volume (initial_volume_<body>) and the
+   * largest free body's diagonal, which the fast-particle measure reads.
    */
   void record_totals();
   /**
@@ -80,10 +82,11 @@ public:
   void prepare(bool resumed, const TimeStepControl &clock);
   /**
    * After each step of length @p dt, which ended at time @p t: its external work, the
-   * energy drift, the peak force, the contact forces' means, and the scene's own
-   * tracking and stop rule (stopping() tells whether it asked to end the run).
+   * energy drift, the peak force, the contact forces' means, the fastest particle's
+   * speed @p max_speed (FastParticles), and the scene's own tracking and stop rule
+   * (stopping() tells whether it asked to end the run).
    */
-  void after_step(double external_work, double dt, double t);
+  void after_step(double external_work, double dt, double t, double max_speed);
   /// The first history row of a run (not of a resumed one), at step 0.
   void write_first_row(double t);
   /// True once @p t has reached the next output time of the history or of a file
@@ -179,6 +182,7 @@ private:
   const std::vector<Tensor<1, dim>> &body_forces();
   std::vector<Tensor<1, dim>> force_sum;
   Probes<dim> probes;
+  FastParticles fast_particles;
   ExactSolution<dim> exact;
   std::unique_ptr<ParticleOutput<dim>> particle_output;
   std::unique_ptr<GridOutput<dim>> grid_output;

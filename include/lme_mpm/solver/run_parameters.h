@@ -5,9 +5,11 @@
 #include <deal.II/base/tensor.h>
 
 #include <lme_mpm/base/dealii.h>
+#include <lme_mpm/base/input.h>
 #include <lme_mpm/base/parameters.h>
 
 #include <string>
+#include <vector>
 
 namespace lme_mpm
 {
@@ -39,6 +41,8 @@ struct RunParameters
   // Problem
   double thickness  = 1;
   bool plane_stress = false;
+  /// Problem/Units: "SI" or "unitless" (no physical ranges apply).
+  std::string units = "SI";
   Tensor<1, dim> body_force;
   /// The body force grows linearly from zero to body_force over this time (s; 0:
   /// applied in full from the start).
@@ -93,13 +97,14 @@ struct TimeStepping
 
 /**
  * The time step from the CFL number or the fixed step, checked against the stability
- * limit Maximum CFL * h_min / c_P; throws ExcBadInput naming the entry, and
- * @p wave_speed_entries, the entries that set c_P, where c_P makes the step useless.
+ * limit Maximum CFL * h_min / c_P; throws ExcBadInput naming the entry, and where
+ * c_P makes the step useless the entries that set it (@p wave_speed_inputs, with
+ * their values, the first one blamed).
  */
 template <int dim>
-TimeStepping stable_time_step(const RunParameters<dim> &run, double h_min,
-                              double max_wave_speed,
-                              const std::string &wave_speed_entries = "the materials");
+TimeStepping
+stable_time_step(const RunParameters<dim> &run, double h_min, double max_wave_speed,
+                 const std::vector<input::EntryValue> &wave_speed_inputs = {});
 } // namespace lme_mpm
 
 #endif
