@@ -140,13 +140,6 @@ bool depends_on_space_or_time(const std::string &expr)
   return false;
 }
 
-std::string quote_entry(const std::string &entry)
-{
-  if (!entry.empty() && entry.front() == '\'')
-    return entry;
-  return "'" + entry + "'";
-}
-
 std::string EntryValue::describe() const
 {
   if (std::isnan(value))

@@ -54,6 +54,7 @@ void MaterialSet<dim>::parse_parameters(ParameterHandler &prm,
   EntryList list(prm, EntryList::Mode::parse);
   models.clear();
   warnings.clear();
+  ranges_apply = si_units;
   for (unsigned int m = 0; m < n_materials; ++m)
   {
     const std::string section = input::subsection_name("Material", m);
@@ -68,7 +69,7 @@ void MaterialSet<dim>::parse_parameters(ParameterHandler &prm,
     // modulus over a tiny density), and with it the time step.
     const auto inputs = inputs_of(m);
     for (const auto &v : inputs)
-      if (si_units && !v.physical())
+      if (!v.physical())
         warnings.push_back(v.describe() + ": the run goes on, but check the value");
     const double c = models.back()->wave_speed();
     AssertThrow(std::isfinite(c) && c > 0,
@@ -99,6 +100,12 @@ std::vector<input::EntryValue> MaterialSet<dim>::inputs_of(const unsigned int m)
                       std::numeric_limits<double>::quiet_NaN(), "", 0, 0});
   inputs.insert(inputs.begin() + (inputs.size() > 1 ? 1 : 0),
                 {section + "/Density", models[m]->density(), "kg/m^3", 1, 1e5});
+  if (!ranges_apply) // a unitless problem: no value is out of range
+    for (auto &v : inputs)
+    {
+      v.low  = -std::numeric_limits<double>::infinity();
+      v.high = std::numeric_limits<double>::infinity();
+    }
   return input::unphysical_first(inputs);
 }
 

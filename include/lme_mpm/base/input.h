@@ -13,16 +13,9 @@
 
 namespace lme_mpm
 {
-namespace input
-{
-/// @p entry in single quotes, unless it is a phrase that quotes its entries itself
-/// ("'A' and 'B'"): every message quotes an entry once.
-std::string quote_entry(const std::string &entry);
-} // namespace input
-
 /// An input value that is well formed but not allowed; the message names the entry.
 DeclException2(ExcBadInput, std::string, std::string,
-               << "Invalid input for " << input::quote_entry(arg1) << ": " << arg2);
+               << "Invalid input for '" << arg1 << "': " << arg2);
 
 namespace input
 {

@@ -54,6 +54,8 @@ private:
 
   std::vector<std::unique_ptr<Material<dim>>> models;
   std::vector<std::string> warnings;
+  /// False for a unitless problem (Problem/Units).
+  bool ranges_apply = true;
 };
 } // namespace lme_mpm
 
