@@ -1,7 +1,7 @@
 #include <lme_mpm/base/checkpoint.h>
+#include <lme_mpm/base/file_writing.h>
 #include <lme_mpm/base/input.h>
 
-#include <filesystem>
 #include <fstream>
 
 namespace lme_mpm
@@ -16,19 +16,15 @@ const char magic[9] = "LMEMPMCF";
 
 void write(const std::string &file, const std::function<void(Archive &)> &serialize)
 {
-  {
-    std::ofstream out(file + ".tmp", std::ios::binary);
-    AssertThrow(out,
-                dealii::ExcMessage("Cannot write the checkpoint '" + file + ".tmp'"));
-    out.write(magic, 8);
-    Archive archive(out);
-    serialize(archive);
-    AssertThrow(archive.good(),
-                dealii::ExcMessage("Writing the checkpoint '" + file + ".tmp' failed"));
-  }
-  if (std::filesystem::exists(file))
-    std::filesystem::rename(file, file + ".prev");
-  std::filesystem::rename(file + ".tmp", file);
+  files::write_atomically(
+      file,
+      [&](std::ostream &out)
+      {
+        out.write(magic, 8);
+        Archive archive(out);
+        serialize(archive);
+      },
+      true);
 }
 
 void read(const std::string &file, const std::function<void(Archive &)> &serialize)

@@ -288,6 +288,14 @@ double Decomposition<dim>::max(const double v) const
 }
 
 template <int dim>
+void Decomposition<dim>::max(std::vector<double> &v) const
+{
+  if (size > 1)
+    MPI_Allreduce(MPI_IN_PLACE, v.data(), static_cast<int>(v.size()), MPI_DOUBLE, MPI_MAX,
+                  comm);
+}
+
+template <int dim>
 unsigned long long Decomposition<dim>::sum(const unsigned long long v) const
 {
   return all_reduce(comm, size, v, MPI_SUM);

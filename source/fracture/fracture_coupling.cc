@@ -54,7 +54,9 @@ void FractureCoupling<dim>::parse_parameters(ParameterHandler &prm,
                                              const BackgroundGrid<dim> &grid_,
                                              const double thickness)
 {
-  grid         = &grid_;
+  grid               = &grid_;
+  specimen_thickness = thickness;
+  placements.clear();
   uniform_grid = true;
   for (unsigned int d = 0; d < dim; ++d)
     uniform_grid = uniform_grid && grid->is_uniform(d);
@@ -93,6 +95,31 @@ void FractureCoupling<dim>::parse_parameters(ParameterHandler &prm,
     prm.leave_subsection();
     prm.leave_subsection();
   }
+}
+
+template <int dim>
+void FractureCoupling<dim>::add_body(const BodyPlacement &body)
+{
+  placements.emplace_back(body.offsets, body.weights);
+  // Only the cells the body starts in bound its neighbourhoods.
+  check_neighbourhood(body.material, body.particles_per_cell, body.section, &body.cells);
+  for (const unsigned int m : body.zone_materials)
+    check_neighbourhood(m, body.particles_per_cell, body.section, &body.cells);
+}
+
+template <int dim>
+void FractureCoupling<dim>::set_crack_band(const ShapeFunction<dim> &functions)
+{
+  if (!any_model)
+    return;
+  // A band width tied to the grid spans the band these functions spread a crack
+  // over, which depends on where the body's particles sit in their cells.
+  fields.band_cells.clear(), fields.band_reach.clear();
+  for (const auto &band : crack_bands(functions, *grid, placements, specimen_thickness))
+    fields.band_cells.push_back(band.width_cells),
+        fields.band_reach.push_back(band.reach_cells);
+  shares_openings = std::any_of(fields.band_reach.begin(), fields.band_reach.end(),
+                                [](const double r) { return r > 0; });
 }
 
 template <int dim>

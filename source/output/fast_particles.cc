@@ -6,6 +6,34 @@
 
 namespace lme_mpm
 {
+template <int dim>
+double FastParticles::transit_length(const ParticleStore<dim> &p,
+                                     const std::vector<std::uint8_t> &prescribed)
+{
+  std::vector<Point<dim>> lo(prescribed.size()), hi(prescribed.size());
+  std::vector<bool> seen(prescribed.size(), false);
+  for (std::size_t i = 0; i < p.size(); ++i)
+  {
+    const unsigned int b = p.body_id[i];
+    for (unsigned int d = 0; d < dim; ++d)
+    {
+      lo[b][d] = seen[b] ? std::min(lo[b][d], p.position[i][d]) : p.position[i][d];
+      hi[b][d] = seen[b] ? std::max(hi[b][d], p.position[i][d]) : p.position[i][d];
+    }
+    seen[b] = true;
+  }
+  double length = 0;
+  for (unsigned int b = 0; b < lo.size(); ++b)
+    if (seen[b] && prescribed[b] == 0)
+      length = std::max(length, lo[b].distance(hi[b]));
+  return length;
+}
+
+template double FastParticles::transit_length(const ParticleStore<2> &,
+                                              const std::vector<std::uint8_t> &);
+template double FastParticles::transit_length(const ParticleStore<3> &,
+                                              const std::vector<std::uint8_t> &);
+
 double FastParticles::warning_level(const std::string &family)
 {
   // The largest level at which the vibrating bar (three periods, CFL 0.3 with the

@@ -1,3 +1,4 @@
+#include <lme_mpm/base/file_writing.h>
 #include <lme_mpm/output/run_summary.h>
 
 #include <nlohmann/json.hpp>
@@ -51,7 +52,7 @@ void RunSummary::write(const std::string &file, const std::string &shape_functio
                  {"overrides", record.overrides},
                  {"libraries", record.libraries},
                  {"resumed_from", record.resumed_from}};
-  std::ofstream(file) << json.dump(2) << '\n';
+  files::write_atomically(file, json.dump(2) + '\n');
 }
 
 namespace
@@ -63,10 +64,9 @@ namespace
  * dissipated energy (J) and crack opening (m).
  */
 template <int dim, class Keep, class Damage>
-void write_particle_points(const std::string &file, const ParticleStore<dim> &store,
-                           const bool with_body, const Keep &keep, const Damage &damage)
+void write_particle_rows(std::ostream &out, const ParticleStore<dim> &store,
+                         const bool with_body, const Keep &keep, const Damage &damage)
 {
-  std::ofstream out(file);
   out << (with_body ? "id,body" : "id");
   for (unsigned int d = 0; d < dim; ++d)
     out << ",x" << d;
@@ -90,6 +90,14 @@ void write_particle_points(const std::string &file, const ParticleStore<dim> &st
       out << '\n';
     }
 }
+
+template <int dim, class Keep, class Damage>
+void write_particle_points(const std::string &file, const ParticleStore<dim> &store,
+                           const bool with_body, const Keep &keep, const Damage &damage)
+{
+  files::write_atomically(file, [&](std::ostream &out)
+                          { write_particle_rows(out, store, with_body, keep, damage); });
+}
 } // namespace
 
 template <int dim>
@@ -108,11 +116,12 @@ void write_damage_field(const std::string &file, const ParticleStore<dim> &store
       [&](const std::size_t p) { return store.failed[p] ? 1.0 : store.damage[p]; });
 }
 
-template <int dim>
-void write_polylines(const std::string &file,
-                     const std::vector<std::vector<Point<dim>>> &polylines)
+namespace
 {
-  std::ofstream lines(file);
+template <int dim>
+void write_polyline_rows(std::ostream &lines,
+                         const std::vector<std::vector<Point<dim>>> &polylines)
+{
   lines << "crack,point";
   for (unsigned int d = 0; d < dim; ++d)
     lines << ",x" << d;
@@ -125,6 +134,15 @@ void write_polylines(const std::string &file,
         lines << ',' << polylines[l][i][d];
       lines << '\n';
     }
+}
+} // namespace
+
+template <int dim>
+void write_polylines(const std::string &file,
+                     const std::vector<std::vector<Point<dim>>> &polylines)
+{
+  files::write_atomically(file, [&](std::ostream &lines)
+                          { write_polyline_rows(lines, polylines); });
 }
 
 template void write_failed_particles(const std::string &, const ParticleStore<2> &);

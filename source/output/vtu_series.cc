@@ -1,31 +1,15 @@
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/exceptions.h>
 
+#include <lme_mpm/base/file_writing.h>
 #include <lme_mpm/output/vtu_series.h>
 
-#include <cstdio>
-#include <fstream>
 #include <iomanip>
 #include <sstream>
 
 namespace lme_mpm
 {
-namespace
-{
-/// Writes to a temporary file and renames it, so a reader never sees half a file.
-void write_atomically(const std::string &path,
-                      const std::function<void(std::ostream &)> &write)
-{
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp);
-    AssertThrow(out, dealii::ExcMessage("Cannot write '" + tmp + "'"));
-    write(out);
-  }
-  AssertThrow(std::rename(tmp.c_str(), path.c_str()) == 0,
-              dealii::ExcMessage("Cannot rename '" + tmp + "' to '" + path + "'"));
-}
-} // namespace
+using files::write_atomically;
 
 VtuSeries::VtuSeries(const std::string &directory, const std::string &stem)
     : directory(directory), stem(stem)

@@ -139,44 +139,47 @@ public:
     h = std::numeric_limits<double>::max();
     for (unsigned int d = 0; d < dim; ++d)
       h = std::min(h, grid.spacing(d, cell[d]));
-    const double R2 = radius_over_h * radius_over_h;
-    auto &y1d       = scratch.y1d;
-    auto &w1d       = scratch.w1d;
     index_box<Graded>(x, cell, h, first, count, scratch);
-
-    // Candidates inside their supports, in increasing node index order. q is |y_I|^2
-    // weighted by w_I = (h / h_I)^2, with h_I the smallest of the node's spacings.
-    unsigned int n = 0;
-    Tensor<1, dim> y_min, y_max, yI;
+    // The extent of the kept offsets, for the hull test.
+    Tensor<1, dim> y_min, y_max;
     for (unsigned int d = 0; d < dim; ++d)
       y_min[d] = std::numeric_limits<double>::infinity(), y_max[d] = -y_min[d];
-    const auto keep = [&](const unsigned int node, const Tensor<1, dim> &yn,
-                          const double q, const double w)
-    {
-      // Cannot happen (max_nodes_ bounds the ball); guards the connectivity row.
-      if (n == max_nodes_)
-        fail("more nodes in the support than max_nodes__per_particle()");
-      nodes[n] = node;
-      // 2D keeps the offsets apart only (the Chebyshev correction copies them).
-      if constexpr (dim == 2)
-        scratch.y0[n] = yn[0], scratch.y1[n] = yn[1];
-      else
-        scratch.y[n] = yn;
-      scratch.a[n] = -gamma * q;
-      scratch.w[n] = w;
-      for (unsigned int d = 0; d < dim; ++d)
-        y_min[d] = std::min(y_min[d], yn[d]), y_max[d] = std::max(y_max[d], yn[d]);
-      ++n;
-    };
-    // Weight of a node from those of its rows: the largest, as h_I is the smallest.
-    const auto weight = [&](const unsigned int d, const unsigned int k)
-    {
-      if constexpr (Graded)
-        return w1d[d][k];
-      else
-        return 1.0;
-    };
+    unsigned int n;
     if constexpr (dim == 2 && !Graded)
+      n = collect_uniform_2d(first, count, nodes, scratch, y_min, y_max, fail);
+    else
+      n = collect_by_rows<Graded>(first, count, nodes, scratch, y_min, y_max, fail);
+
+    // The multiplier is finite only if x is strictly inside the hull of its
+    // nodes; on a grid that needs nodes on both sides in every direction.
+    for (unsigned int d = 0; d < dim; ++d)
+      if (!(y_min[d] < 0 && y_max[d] > 0))
+      {
+        fail("the particle is not strictly inside the convex hull of its ", n,
+             " nodes within reach (R = ", radius_over_h * h,
+             " for the cell's spacing; no node on one side along direction ", d,
+             "): it lies on the grid boundary, or the support is too small for its ",
+             "cell (lower 'LME gamma' = ", gamma, " or 'LME tolerance')");
+      }
+    return n;
+  }
+
+private:
+  /**
+   * set_up() on a uniform 2D grid: the nodes of the index box inside the support, row
+   * by row, with their offsets and exponents in @p scratch, and the extent of the
+   * offsets in @p y_min, @p y_max; returns their number.
+   */
+  template <class Fail>
+  unsigned int collect_uniform_2d(const std::array<unsigned int, dim> &first,
+                                  const std::array<unsigned int, dim> &count,
+                                  unsigned int *nodes, Offsets &scratch,
+                                  Tensor<1, dim> &y_min, Tensor<1, dim> &y_max,
+                                  const Fail &fail) const
+  {
+    const double R2 = radius_over_h * radius_over_h;
+    const auto &y1d = scratch.y1d;
+    unsigned int n  = 0;
     {
       // The kept nodes of a row are contiguous (u falls monotonically along it and q
       // grows with |u|): each row's range grows or shrinks from the last one's by the
@@ -224,7 +227,54 @@ public:
       else
         y_min[0] = y_min[1] = -1, y_max[0] = y_max[1] = 1;
     }
-    else if constexpr (dim == 2)
+    return n;
+  }
+
+  /**
+   * set_up() on a graded 2D grid and in 3D: the nodes of the index box inside their
+   * supports, as collect_uniform_2d().
+   */
+  template <bool Graded, class Fail>
+  unsigned int collect_by_rows(const std::array<unsigned int, dim> &first,
+                               const std::array<unsigned int, dim> &count,
+                               unsigned int *nodes, Offsets &scratch,
+                               Tensor<1, dim> &y_min, Tensor<1, dim> &y_max,
+                               const Fail &fail) const
+  {
+    // Candidates inside their supports, in increasing node index order. q is |y_I|^2
+    // weighted by w_I = (h / h_I)^2, with h_I the smallest of the node's spacings.
+    const double R2 = radius_over_h * radius_over_h;
+    const auto &y1d = scratch.y1d;
+    const auto &w1d = scratch.w1d;
+    unsigned int n  = 0;
+    Tensor<1, dim> yI;
+    const auto keep = [&](const unsigned int node, const Tensor<1, dim> &yn,
+                          const double q, const double w)
+    {
+      // Cannot happen (max_nodes_ bounds the ball); guards the connectivity row.
+      if (n == max_nodes_)
+        fail("more nodes in the support than max_nodes__per_particle()");
+      nodes[n] = node;
+      // 2D keeps the offsets apart only (the Chebyshev correction copies them).
+      if constexpr (dim == 2)
+        scratch.y0[n] = yn[0], scratch.y1[n] = yn[1];
+      else
+        scratch.y[n] = yn;
+      scratch.a[n] = -gamma * q;
+      scratch.w[n] = w;
+      for (unsigned int d = 0; d < dim; ++d)
+        y_min[d] = std::min(y_min[d], yn[d]), y_max[d] = std::max(y_max[d], yn[d]);
+      ++n;
+    };
+    // Weight of a node from those of its rows: the largest, as h_I is the smallest.
+    const auto weight = [&](const unsigned int d, const unsigned int k)
+    {
+      if constexpr (Graded)
+        return w1d[d][k];
+      else
+        return 1.0;
+    };
+    if constexpr (dim == 2)
     {
       for (unsigned int j = 0; j < count[1]; ++j)
       {
@@ -272,21 +322,9 @@ public:
         }
       }
     }
-    // The multiplier is finite only if x is strictly inside the hull of its
-    // nodes; on a grid that needs nodes on both sides in every direction.
-    for (unsigned int d = 0; d < dim; ++d)
-      if (!(y_min[d] < 0 && y_max[d] > 0))
-      {
-        fail("the particle is not strictly inside the convex hull of its ", n,
-             " nodes within reach (R = ", radius_over_h * h,
-             " for the cell's spacing; no node on one side along direction ", d,
-             "): it lies on the grid boundary, or the support is too small for its ",
-             "cell (lower 'LME gamma' = ", gamma, " or 'LME tolerance')");
-      }
     return n;
   }
 
-private:
   /**
    * The index box of the nodes within [x - R, x + R] in each direction (R the widest
    * support that can reach x), and their scaled offsets (and weights, on a graded

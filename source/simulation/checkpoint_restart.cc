@@ -125,6 +125,20 @@ void Simulation<dim>::resume_from(const std::string &directory)
     AssertThrow(ranks.min(std::filesystem::exists(file) ? 1ull : 0ull) == 1,
                 ExcBadInput("--resume", "no checkpoint '" + file + "' on every rank"));
   checkpoint::read(file, [&](Archive &ar) { serialize(ar); });
+  if (ranks.distributed())
+  {
+    // A checkpoint that some rank could not complete (a full disk) leaves the ranks'
+    // latest files at different steps: those ahead go back to their previous one.
+    const unsigned long long lowest =
+        ranks.min(static_cast<unsigned long long>(step_count));
+    if (step_count != lowest && std::filesystem::exists(file + ".prev"))
+      checkpoint::read(file + ".prev", [&](Archive &ar) { serialize(ar); });
+    AssertThrow(
+        ranks.min(step_count == lowest ? 1ull : 0ull) == 1,
+        ExcBadInput("--resume", "the ranks' checkpoints in '" + directory +
+                                    "' are of different steps, and no step is " +
+                                    "held by every rank's latest or previous one"));
+  }
   parts.particles.mark_reordered();
   AssertThrow(t < clock.end_time(),
               ExcBadInput("--resume", "the checkpoint (t = " + format_double(t) +

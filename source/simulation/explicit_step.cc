@@ -302,7 +302,6 @@ StepResult ExplicitStep<dim>::update_particles(const double t, const Corrected &
   const double body_work = parts.transfer.grid_to_particles(
       newmark, dt, parts.parameters.body_force_at(t + 0.5 * dt),
       0.5 * parts.grid.min_spacing(), result.first_bad, result.max_speed);
-  result.max_speed = parts.ranks.max(result.max_speed);
   // The constraints' work is summed over the ranks already.
   // The rigid surfaces' work is summed over the ranks already.
   result.external_work =

@@ -8,28 +8,36 @@
 
 namespace lme_mpm
 {
+namespace
+{
+const char *const left_the_grid = "the particle left the background grid (enlarge the "
+                                  "grid, or the run is unstable: lower the CFL number)";
+} // namespace
+
 template <int dim>
 void RunGuard<dim>::stop_if_lost(const std::size_t p, const unsigned int step,
                                  const double t) const
 {
-  stop_if_any(p, step, t,
-              [](std::size_t)
-              {
-                return "the particle left the background grid (enlarge the grid, or the "
-                       "run is unstable: lower the CFL number)";
-              });
+  if (p < particles.size())
+    AssertThrow(false,
+                ExcRunAborted(step, t, particles.id[p],
+                              point_to_string(particles.position[p]), left_the_grid));
 }
 
 template <int dim>
-void RunGuard<dim>::stop_if_unstable(const std::size_t p, const unsigned int step,
-                                     const double t) const
+void RunGuard<dim>::stop_if_unstable(const std::size_t p, const bool on_some_rank,
+                                     const unsigned int step, const double t) const
 {
+  if (!on_some_rank)
+    return;
   stop_if_any(p, step, t,
               [this](const std::size_t bad) -> std::string
               {
                 if (!std::isfinite(particles.velocity[bad].norm_square()))
                   return "non-finite velocity (the run is unstable: lower the CFL "
                          "number)";
+                if (!grid.inside(particles.position[bad]))
+                  return left_the_grid;
                 if (!(particles.density[bad] > 0))
                   return "non-positive density (the material is inverted: the run is "
                          "unstable, lower the CFL number, or the deformation is too "
@@ -61,9 +69,9 @@ void RunGuard<dim>::stop_if_energy_runs_away(const double drift,
 }
 
 template <int dim>
-void RunGuard<dim>::stop_if_interrupted(const unsigned int step, const double t) const
+void RunGuard<dim>::stop_if_interrupted(const int signal, const unsigned int step,
+                                        const double t) const
 {
-  const int signal = static_cast<int>(ranks.max(interrupt::received()));
   if (signal != 0)
     AssertThrow(false, ExcInterrupted(interrupt::name(signal), step, t));
 }

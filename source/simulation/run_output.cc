@@ -1,3 +1,4 @@
+#include <lme_mpm/base/file_writing.h>
 #include <lme_mpm/base/format.h>
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/output/run_files.h>
@@ -205,7 +206,7 @@ void RunOutput<dim>::prepare(const bool resumed, const TimeStepControl &clock)
   if (!writes_files())
     return;
   if (!record.parameters.empty())
-    std::ofstream(output_directory + "/parameters.prm") << record.parameters;
+    files::write_atomically(output_directory + "/parameters.prm", record.parameters);
   if (resumed)
     history.resume(output_directory, resumed_history_size);
   else
@@ -407,25 +408,10 @@ void RunOutput<dim>::record_totals()
     body_volumes.emplace_back(name, 0.0);
   for (std::size_t i = 0; i < p.size(); ++i)
     body_volumes[p.body_id[i]].second += p.initial_volume[i];
-  // The largest free body's bounding-box diagonal: the length a P-wave crosses.
-  std::vector<Point<dim>> lo(body_volumes.size()), hi(body_volumes.size());
-  std::vector<bool> seen(body_volumes.size(), false);
-  for (std::size_t i = 0; i < p.size(); ++i)
-  {
-    const unsigned int b = p.body_id[i];
-    for (unsigned int d = 0; d < dim; ++d)
-    {
-      lo[b][d] = seen[b] ? std::min(lo[b][d], p.position[i][d]) : p.position[i][d];
-      hi[b][d] = seen[b] ? std::max(hi[b][d], p.position[i][d]) : p.position[i][d];
-    }
-    seen[b] = true;
-  }
-  double transit_length = 0;
-  for (unsigned int b = 0; b < lo.size(); ++b)
-    if (seen[b] && !parts.bodies.prescribed(b))
-      transit_length = std::max(transit_length, lo[b].distance(hi[b]));
-  fast_particles.set_up(parts.shape_function->name(), parts.grid.min_spacing(),
-                        parts.materials.max_wave_speed(), transit_length);
+  fast_particles.set_up(
+      parts.shape_function->name(), parts.grid.min_spacing(),
+      parts.materials.max_wave_speed(),
+      FastParticles::transit_length(p, parts.bodies.prescribed_flags()));
 }
 
 template <int dim>
@@ -477,15 +463,22 @@ RunSummary RunOutput<dim>::summarise(const double wall, const unsigned int steps
     if (!v.first.empty() && v.second > 0) // not a rigid exact surface
       results["initial_volume_" + v.first] = v.second;
   parts.fracture.add_statistics(all, results);
-  if (parts.fracture.active())
-  {
-    write_failed_particles(output_directory + "/failed_particles.csv", all);
-    write_damage_field(output_directory + "/damage.csv", all);
-  }
   if (!parts.cracks.empty())
-  {
-    write_polylines(output_directory + "/cracks.csv", parts.cracks.polylines());
     results["crack_second_fields"] = parts.cracks.n_crack_nodes();
+  try
+  {
+    if (parts.fracture.active())
+    {
+      write_failed_particles(output_directory + "/failed_particles.csv", all);
+      write_damage_field(output_directory + "/damage.csv", all);
+    }
+    if (!parts.cracks.empty())
+      write_polylines(output_directory + "/cracks.csv", parts.cracks.polylines());
+  }
+  catch (const std::exception &e)
+  {
+    // summary.json still gets written, with this as the run's failure.
+    end_file_failure = input::concise_message(e);
   }
   summary.values   = results;
   summary.warnings = parts.materials.input_warnings();

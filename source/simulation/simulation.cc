@@ -1,13 +1,16 @@
 #include <deal.II/base/timer.h>
 
+#include <lme_mpm/base/file_writing.h>
 #include <lme_mpm/base/format.h>
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/base/interrupt.h>
 #include <lme_mpm/base/plugin_libraries.h>
 #include <lme_mpm/geometry/particle_generator.h>
-#include <lme_mpm/shape_functions/crack_band.h>
+#include <lme_mpm/shape_functions/shape_function.h>
 #include <lme_mpm/simulation/halo_reach.h>
 #include <lme_mpm/simulation/simulation.h>
 
+#include <cstdio>
 #include <sstream>
 
 namespace lme_mpm
@@ -19,6 +22,7 @@ void Simulation<dim>::declare_parameters(ParameterHandler &prm,
   ParameterCounts::declare_parameters(prm);
   PluginLibraries::declare_parameters(prm);
   RunParameters<dim>::declare_parameters(prm);
+  declare_shape_function_parameters<dim>(prm);
   declare_scene_parameters<dim>(prm);
   BackgroundGrid<dim>::declare_parameters(prm);
   CrackSet<dim>::declare_parameters(prm);
@@ -36,7 +40,7 @@ void Simulation<dim>::declare_parameters(ParameterHandler &prm,
 template <int dim>
 Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts,
                             std::ostream &console)
-    : guard(parts.particles, parts.ranks), stepper(parts, guard),
+    : guard(parts.particles, parts.grid, parts.ranks), stepper(parts, guard),
       output(parts, stepper.stages(), console)
 {
   parts.parameters.parse_parameters(prm);
@@ -104,19 +108,15 @@ void Simulation<dim>::setup_particles(ParameterHandler &prm,
       ParticleGenerator<dim>::fill(prm, counts.bodies, parts.grid, densities,
                                    parts.parameters.thickness, parts.particles);
   const double h_min = parts.grid.min_spacing();
-  body_placements.clear();
+  face_depths.clear();
   std::vector<std::string> sections;
   for (const auto &body : bodies)
   {
-    body_placements.emplace_back(body.offsets, body.weights);
+    // A body's outermost particles sit this far inside a face of their cells.
+    face_depths.push_back(body.offsets.front() * h_min);
     sections.push_back(body.section);
     particle_spacing = std::min(particle_spacing, h_min / body.particles_per_cell);
-    // Only the cells the body starts in bound its neighbourhoods.
-    parts.fracture.check_neighbourhood(body.material, body.particles_per_cell,
-                                       body.section, &body.cells);
-    for (const unsigned int m : body.zone_materials)
-      parts.fracture.check_neighbourhood(m, body.particles_per_cell, body.section,
-                                         &body.cells);
+    parts.fracture.add_body(body);
   }
   check_initial_motion(sections);
 }
@@ -160,22 +160,10 @@ template <int dim>
 void Simulation<dim>::setup_shape_functions(ParameterHandler &prm)
 {
   ShapeFunctionContext<dim> context;
-  context.grid      = &parts.grid;
-  context.thickness = parts.parameters.thickness;
-  prm.enter_subsection("Shape functions");
-  parts.shape_function = ShapeFunctionRegistry<dim>::instance().create(
-      parts.parameters.shape_function, prm, context);
-  prm.leave_subsection();
-  if (parts.fracture.active())
-  {
-    // A band width tied to the grid spans the band these functions spread a crack
-    // over, which depends on where the body's particles sit in their cells.
-    std::vector<double> width, reach;
-    for (const auto &band : crack_bands(*parts.shape_function, parts.grid,
-                                        body_placements, parts.parameters.thickness))
-      width.push_back(band.width_cells), reach.push_back(band.reach_cells);
-    parts.fracture.set_crack_band(width, reach);
-  }
+  context.grid         = &parts.grid;
+  context.thickness    = parts.parameters.thickness;
+  parts.shape_function = create_shape_function(prm, context);
+  parts.fracture.set_crack_band(*parts.shape_function);
   parts.transfer.nodes().layout.reinit(parts.grid.n_nodes());
   if (!parts.cracks.empty())
   {
@@ -195,13 +183,7 @@ void Simulation<dim>::setup_bodies_and_contact(ParameterHandler &prm,
   parts.bodies.parse_parameters(prm, counts.bodies, set_names);
   parts.contact.parse_parameters(prm, parts.parameters.thickness,
                                  parts.shape_function->support_radius(parts.grid));
-  {
-    // A body's outermost particles sit this far inside a face of their cells.
-    std::vector<double> depth;
-    for (const auto &placement : body_placements)
-      depth.push_back(placement.first.front() * parts.grid.min_spacing());
-    parts.rigid.parse_parameters(prm, parts.bodies, depth, parts.grid.min_spacing());
-  }
+  parts.rigid.parse_parameters(prm, parts.bodies, face_depths, parts.grid.min_spacing());
   parts.gauges.parse_parameters(prm, parts.grid.min_spacing());
   parts.gauges.set_excluded_bodies(parts.bodies.prescribed_flags());
   parts.control.parse_parameters(prm, parts.bodies, parts.gauges);
@@ -256,11 +238,18 @@ void Simulation<dim>::step()
   // The last step lands on the end time to the bit.
   t = clock.at_end() ? clock.end_time() : t + dt;
   ++step_count;
-  max_speed = result.max_speed;
+  // One collective call per step for the conductor's maxima: the fastest particle
+  // (the next step's length), and the guard's interrupt signal and particle flag.
+  step_maxima[0] = result.max_speed;
+  step_maxima[1] = interrupt::received();
+  step_maxima[2] = result.first_bad < parts.particles.size() ? 1 : 0;
+  parts.ranks.max(step_maxima);
+  max_speed        = step_maxima[0];
+  interrupt_signal = static_cast<int>(step_maxima[1]);
   // The servo reads its gauge after the step and sets the devices' speed for the next.
   parts.control.update(parts.particles, &parts.ranks, t, dt);
   output.after_step(result.external_work, dt, t, max_speed);
-  guard.stop_if_unstable(result.first_bad, step_count, t);
+  guard.stop_if_unstable(result.first_bad, step_maxima[2] > 0, step_count, t);
   stepper.exchange_particles();
 }
 
@@ -312,7 +301,7 @@ void Simulation<dim>::advance_to_end(TimerOutput &timer,
     }
     if (step_count % report_every == 0)
       output.report_progress(start, step_count, std::min(1.0, t / clock.end_time()), t);
-    guard.stop_if_interrupted(step_count, t);
+    guard.stop_if_interrupted(interrupt_signal, step_count, t);
     const unsigned int max_steps = parts.parameters.max_steps;
     if (max_steps > 0 && step_count >= max_steps)
       AssertThrow(false, ExcStepLimit(step_count, t));
@@ -334,9 +323,11 @@ std::string Simulation<dim>::end_failed_run(const std::exception &e)
   std::string message = input::concise_message(e);
   if (!on_all_ranks)
   {
+    // A file that could not be written belongs to the step done, not the next.
+    const bool writing = dynamic_cast<const ExcCannotWrite *>(&e) != nullptr;
     std::ostringstream where;
-    where << "Run stopped at step " << step_count + 1 << ", time " << t << ": "
-          << message;
+    where << "Run stopped at step " << step_count + (writing ? 0 : 1) << ", time " << t
+          << (writing ? ", writing its output: " : ": ") << message;
     message = where.str();
   }
   // Keep what the run produced: one last row and particle file at the failure
@@ -349,6 +340,36 @@ std::string Simulation<dim>::end_failed_run(const std::exception &e)
   {
   }
   return message;
+}
+
+template <int dim>
+void Simulation<dim>::write_summary(const RunSummary &summary,
+                                    const std::uint64_t checksum, std::string &status,
+                                    std::string &message) const
+{
+  const std::string file = output.directory() + "/summary.json";
+  try
+  {
+    summary.write(file, parts.shape_function->name(), checksum, dim);
+  }
+  catch (const std::exception &e)
+  {
+    // A full disk: no summary at all rather than an earlier run's (doc/outputs.md).
+    std::remove(file.c_str());
+    fail_on_write(input::concise_message(e), status, message);
+  }
+}
+
+template <int dim>
+void Simulation<dim>::fail_on_write(const std::string &why, std::string &status,
+                                    std::string &message)
+{
+  // A run that ended well fails for the file it could not write; one that failed
+  // already keeps its own cause first.
+  if (status == "completed" || status == "stopped")
+    status = "aborted", message = why;
+  else
+    message += "; also " + why;
 }
 
 template <int dim>
@@ -400,14 +421,15 @@ std::map<std::string, double> Simulation<dim>::run()
   }
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  RunSummary summary           = output.summarise(wall, step_count, clock, t);
+  RunSummary summary = output.summarise(wall, step_count, clock, t);
+  if (!output.failed_end_file().empty())
+    fail_on_write(output.failed_end_file(), status, message);
   summary.status               = status;
-  summary.stop_reason          = stop_reason;
+  summary.stop_reason          = status == "stopped" ? stop_reason : "";
   summary.message              = message.empty() ? output.stop_reason() : message;
   const std::uint64_t checksum = state_checksum();
   if (output.writes_files())
-    summary.write(output.directory() + "/summary.json", parts.shape_function->name(),
-                  checksum, dim);
+    write_summary(summary, checksum, status, message);
   // Past this point the output is on disk (on every rank); the caller reports the
   // failure.
   parts.ranks.barrier();

@@ -249,8 +249,10 @@ double GridTransfer<dim>::grid_to_particles(const ExplicitNewmark &newmark,
             pw += particles.mass[p] * (body_force * increment[p]);
           v2                = std::max(v2, particles.velocity[p].norm_square());
           const double move = increment[p].norm();
+          // Leaving the grid is caught here, where the guard's flag rides on the
+          // step's one reduction, not at the next step's search of cells.
           if (!(move < max_move) || !std::isfinite(particles.velocity[p].norm_square()) ||
-              !(particles.density[p] > 0))
+              !(particles.density[p] > 0) || !grid.inside(particles.position[p]))
             keep_lowest(first_bad, p);
         }
         double seen = fastest.load();

@@ -1,5 +1,4 @@
 #include <lme_mpm/base/input.h>
-#include <lme_mpm/shape_functions/shape_function.h>
 #include <lme_mpm/solver/run_parameters.h>
 
 #include <unistd.h>
@@ -111,13 +110,6 @@ void RunParameters<dim>::entries(EntryList &list)
            "steps') and exit code 0.");
   list.leave();
 
-  list.enter("Shape functions");
-  list.add("Type", shape_function, "linear",
-           Patterns::Selection(ShapeFunctionRegistry<dim>::instance().pattern()),
-           "Particle-node coupling. " +
-               ShapeFunctionRegistry<dim>::instance().documentation());
-  list.leave();
-
   list.enter("Output");
   list.add("Directory", directory, "output", Patterns::Anything(),
            "Directory for VTU/PVD files, history.csv and summary.json.");
@@ -166,10 +158,6 @@ void RunParameters<dim>::declare_parameters(ParameterHandler &prm)
 {
   EntryList list(prm, EntryList::Mode::declare);
   RunParameters<dim>().entries(list);
-  // The shape functions' own entries sit beside the selection.
-  prm.enter_subsection("Shape functions");
-  ShapeFunctionRegistry<dim>::instance().declare_all(prm);
-  prm.leave_subsection();
 }
 
 template <int dim>

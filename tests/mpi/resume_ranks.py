@@ -42,6 +42,9 @@ def main():
     if not all(f in files for f in expected):
         failures.append(f"checkpoint files {files}, expected {expected}")
     first = outcome(out)
+    behind_dir = out + "_behind"
+    shutil.rmtree(behind_dir, ignore_errors=True)
+    shutil.copytree(out, behind_dir)
 
     resumed = run(exe, prm, out, n, extra, resume=True)
     if resumed.returncode != 0:
@@ -53,6 +56,20 @@ def main():
                             "without")
         if second[1] != first[1]:
             failures.append("history.csv differs after resuming")
+
+    # A last checkpoint that rank 1 could not complete (a full disk) leaves its
+    # previous one in place: every rank goes back to the step they all hold.
+    last = os.path.join(behind_dir, "checkpoint.1.bin")
+    if os.path.exists(last + ".prev"):
+        shutil.copyfile(last + ".prev", last)
+        behind = run(exe, prm, behind_dir, n, extra, resume=True)
+        if behind.returncode != 0:
+            failures.append(f"resuming with rank 1 a checkpoint behind exited with "
+                            f"{behind.returncode}")
+        elif outcome(behind_dir) != first:
+            failures.append("resuming with rank 1 a checkpoint behind changed the run")
+    else:
+        failures.append("no checkpoint.1.bin.prev to go back to")
 
     wrong = run(exe, prm, out, 1, extra, resume=True)
     if wrong.returncode == 0 or f"mpirun -np {n}" not in wrong.stdout:

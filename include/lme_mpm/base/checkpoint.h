@@ -12,8 +12,9 @@ namespace checkpoint
 {
 /**
  * Writes @p file through @p serialize, after the format's magic and version.
- * Atomic: the data go to file.tmp, which replaces the file only when complete; the
- * file it replaces is kept as file.prev.
+ * Atomic (files::write_atomically): the data go to file.tmp, which replaces the file
+ * only when complete; the file it replaces is kept as file.prev. A checkpoint that
+ * cannot be completed (a full disk) throws ExcCannotWrite and leaves both as they were.
  */
 void write(const std::string &file, const std::function<void(Archive &)> &serialize);
 

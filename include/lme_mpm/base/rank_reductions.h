@@ -23,6 +23,9 @@ public:
   virtual void sum(std::vector<double> &v) const = 0;
   /// The largest value over the ranks.
   virtual double max(double v) const = 0;
+  /// The largest values over the ranks, element by element, in place (one
+  /// collective call for several maxima).
+  virtual void max(std::vector<double> &v) const = 0;
   /// True if this rank reports grid node @p n (its owner).
   virtual bool owns_node(unsigned int n) const = 0;
 };

@@ -108,6 +108,7 @@ public:
   double sum(double v) const override;
   void sum(std::vector<double> &v) const override;
   double max(double v) const override;
+  void max(std::vector<double> &v) const override;
   unsigned long long sum(unsigned long long v) const;
   /// The smallest value over the ranks (and the rank that has it).
   unsigned long long min(unsigned long long v) const;

@@ -8,9 +8,11 @@
 #include <lme_mpm/fracture/fracture_model.h>
 #include <lme_mpm/fracture/neighbourhood.h>
 #include <lme_mpm/fracture/strength_field.h>
+#include <lme_mpm/geometry/particle_generator.h>
 #include <lme_mpm/grid/background_grid.h>
 #include <lme_mpm/materials/material_set.h>
 #include <lme_mpm/particles/particle_store.h>
+#include <lme_mpm/shape_functions/crack_band.h>
 
 #include <algorithm>
 #include <array>
@@ -72,17 +74,19 @@ public:
                            const std::vector<std::uint8_t> *occupied = nullptr) const;
 
   /**
-   * The band a crack localises in, per body (crack_band() of the run's shape functions
-   * and the body's particle placement): its width and its reach, in cells; lengths
-   * tied to the grid are these times the particle's local spacing.
+   * Registers the bodies in order: checks each material of @p body against its
+   * particles' spacing (check_neighbourhood(), in the cells it occupies) and keeps
+   * its particles' placement in a cell for set_crack_band().
    */
-  void set_crack_band(std::vector<double> width_cells, std::vector<double> reach_cells)
-  {
-    fields.band_cells = std::move(width_cells);
-    fields.band_reach = std::move(reach_cells);
-    shares_openings   = std::any_of(fields.band_reach.begin(), fields.band_reach.end(),
-                                    [](const double r) { return r > 0; });
-  }
+  void add_body(const BodyPlacement &body);
+
+  /**
+   * The band a crack localises in, per body: crack_band() of the run's shape functions
+   * @p functions for the body's particle placement (add_body()), its width and its
+   * reach in cells; lengths tied to the grid are these times the particle's local
+   * spacing. Without a fracturing material nothing is evaluated.
+   */
+  void set_crack_band(const ShapeFunction<dim> &functions);
 
   /**
    * Sizes the snapshot for @p particles; call before take_snapshot() in each step
@@ -123,7 +127,10 @@ private:
   bool strengths_assigned         = false;
   bool any_model                  = false;
   const BackgroundGrid<dim> *grid = nullptr;
-  bool uniform_grid               = true;
+  double specimen_thickness       = 1; ///< 2D
+  /// Per body: its particles' positions and volume shares in a cell (add_body())
+  std::vector<CellPlacement> placements;
+  bool uniform_grid = true;
   Neighbourhood<dim> neighbours;
   CrackSegmentBins<dim> crack_bins;
   FractureFields fields;

@@ -2,6 +2,10 @@
 #define LME_MPM_OUTPUT_FAST_PARTICLES_H
 
 #include <lme_mpm/base/archive.h>
+#include <lme_mpm/particles/particle_store.h>
+
+#include <cstdint>
+#include <vector>
 
 #include <ostream>
 #include <string>
@@ -25,6 +29,12 @@ public:
   /// For shape functions @p family on a grid of smallest spacing @p h_min, the
   /// fastest P-wave speed @p c_P and the largest body's diagonal @p transit_length.
   void set_up(const std::string &family, double h_min, double c_P, double transit_length);
+  /// The diagonal of the largest bounding box of the bodies in @p particles that are
+  /// not prescribed (@p prescribed per body, nonzero for a prescribed one): the length
+  /// a P-wave crosses.
+  template <int dim>
+  static double transit_length(const ParticleStore<dim> &particles,
+                               const std::vector<std::uint8_t> &prescribed);
   /// After each step with the fastest particle's speed; true the first time the
   /// family's level is passed (the caller prints warning()).
   bool observe(double max_speed);

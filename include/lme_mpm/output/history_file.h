@@ -1,16 +1,18 @@
 #ifndef LME_MPM_OUTPUT_HISTORY_FILE_H
 #define LME_MPM_OUTPUT_HISTORY_FILE_H
 
+#include <lme_mpm/base/file_writing.h>
+
 #include <cstdint>
-#include <fstream>
 #include <string>
 
 namespace lme_mpm
 {
 /**
- * history.csv: a header line, then one row per output time, flushed as it is
- * written so that a run that stops early keeps every row. A resumed run cuts the
- * rows written after its checkpoint and appends.
+ * history.csv: a header line, then one row per output time, on disk as it is
+ * written so that a run that stops early keeps every row. A row that cannot be
+ * written (a full disk) is cut off again and stops the run naming the file. A
+ * resumed run cuts the rows written after its checkpoint and appends.
  */
 class HistoryFile
 {
@@ -22,11 +24,10 @@ public:
   void resume(const std::string &directory, std::uint64_t size);
   void write_row(const std::string &row);
   /// The file's size in bytes now (what a checkpoint records).
-  std::uint64_t size();
+  std::uint64_t size() const { return file.size(); }
 
 private:
-  std::string name;
-  std::ofstream out;
+  files::AppendFile file;
 };
 } // namespace lme_mpm
 

@@ -144,6 +144,15 @@ public:
 
 template <int dim>
 using ShapeFunctionRegistry = Registry<ShapeFunction<dim>, ShapeFunctionContext<dim>>;
+
+/// Declares "Shape functions/Type" and every registered family's entries beside it in
+/// "Shape functions".
+template <int dim>
+void declare_shape_function_parameters(ParameterHandler &prm);
+/// Builds the family "Shape functions/Type" names, on the grid of @p context.
+template <int dim>
+std::unique_ptr<ShapeFunction<dim>>
+create_shape_function(ParameterHandler &prm, const ShapeFunctionContext<dim> &context);
 } // namespace lme_mpm
 
 /**

@@ -22,7 +22,8 @@ struct StepResult
   /// The work of the external forces over the step (J): the constraints' reactions,
   /// the body force and the prescribed bodies' contact, summed over the ranks.
   double external_work = 0;
-  /// The fastest particle's speed after the step (m/s, over the ranks).
+  /// The fastest particle's speed after the step (m/s, on this rank: the conductor
+  /// reduces it with its other maxima in one collective call).
   double max_speed = 0;
 };
 

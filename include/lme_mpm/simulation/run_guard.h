@@ -4,6 +4,7 @@
 #include <deal.II/base/exceptions.h>
 
 #include <lme_mpm/distributed/decomposition.h>
+#include <lme_mpm/grid/background_grid.h>
 #include <lme_mpm/particles/particle_store.h>
 
 #include <cstddef>
@@ -48,17 +49,23 @@ template <int dim>
 class RunGuard
 {
 public:
-  RunGuard(const ParticleStore<dim> &particles, const Decomposition<dim> &ranks)
-      : particles(particles), ranks(ranks)
+  RunGuard(const ParticleStore<dim> &particles, const BackgroundGrid<dim> &grid,
+           const Decomposition<dim> &ranks)
+      : particles(particles), grid(grid), ranks(ranks)
   {
   }
 
-  /// Stops if particle @p p of some rank (p = particles.size(): none here) left the
-  /// grid at step @p step, time @p t.
+  /// Stops if particle @p p (p = particles.size(): none) left the grid at step
+  /// @p step, time @p t, found by the search of cells. The step before has checked
+  /// every owned particle against the grid (stop_if_unstable()), so this happens
+  /// only to a particle that started outside it: the check is this rank's alone.
   void stop_if_lost(std::size_t p, unsigned int step, double t) const;
-  /// Stops if particle @p p of some rank went wrong in the step that ended at step
-  /// @p step, time @p t.
-  void stop_if_unstable(std::size_t p, unsigned int step, double t) const;
+  /// Stops if particle @p p of some rank went wrong (or left the grid) in the step
+  /// that ended at step @p step, time @p t. @p on_some_rank: whether any rank has
+  /// such a particle, reduced by the caller with the step's other maxima; only then
+  /// do the ranks agree on which particle to name.
+  void stop_if_unstable(std::size_t p, bool on_some_rank, unsigned int step,
+                        double t) const;
   /**
    * Stops the run (on every rank) once the total energy has drifted by more than
    * half of the run's energy scale (EnergyBalance): no stable run does that. Acts once
@@ -68,9 +75,10 @@ public:
    */
   void stop_if_energy_runs_away(double drift, unsigned int limited_steps,
                                 unsigned int step, double t) const;
-  /// Throws ExcInterrupted on every rank once any rank has received SIGINT or
-  /// SIGTERM (interrupt.h).
-  void stop_if_interrupted(unsigned int step, double t) const;
+  /// Throws ExcInterrupted for @p signal, the largest signal number any rank has
+  /// received (interrupt.h; 0: none), reduced by the caller with the step's other
+  /// maxima, so that every rank stops at the same step.
+  void stop_if_interrupted(int signal, unsigned int step, double t) const;
 
 private:
   /// Throws ExcRunAborted for particle @p p (one rank) or ExcRunStopped with its
@@ -79,6 +87,7 @@ private:
                    const std::function<std::string(std::size_t)> &why) const;
 
   const ParticleStore<dim> &particles;
+  const BackgroundGrid<dim> &grid;
   const Decomposition<dim> &ranks;
 };
 } // namespace lme_mpm

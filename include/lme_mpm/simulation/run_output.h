@@ -113,9 +113,12 @@ public:
   double energy_drift() const { return energy.max_drift(); }
   /// The energies now (J), over every particle of every rank.
   std::map<std::string, double> energies() const;
-  /// The values of summary.json, from every particle; the files of the end of a run.
+  /// The values of summary.json, from every particle; the files of the end of a run
+  /// (one that cannot be written is skipped, and named by failed_end_file()).
   RunSummary summarise(double wall, unsigned int steps, const TimeStepControl &clock,
                        double t);
+  /// Why an end-of-run file could not be written in summarise() (empty: none).
+  const std::string &failed_end_file() const { return end_file_failure; }
   /// The progress line after @p step steps, a fraction @p done of the run.
   void report_progress(std::chrono::steady_clock::time_point start, unsigned int step,
                        double done, double t);
@@ -195,6 +198,7 @@ private:
   std::uint64_t resumed_history_size = 0;
   std::map<std::string, double> results;
   std::string scene_stop;
+  std::string end_file_failure;
   /// Distributed runs: each rank's particles, ghosts and @p exchange_seconds.
   void report_balance(double wall, double exchange_seconds);
 };

@@ -5,7 +5,6 @@
 #include <deal.II/base/timer.h>
 
 #include <lme_mpm/base/archive.h>
-#include <lme_mpm/shape_functions/crack_band.h>
 #include <lme_mpm/simulation/explicit_step.h>
 #include <lme_mpm/simulation/parts.h>
 #include <lme_mpm/simulation/run_guard.h>
@@ -80,6 +79,14 @@ private:
   void advance_to_end(TimerOutput &timer, std::chrono::steady_clock::time_point start);
   /// Ends a run that failed inside the loop: its message (what the output keeps).
   std::string end_failed_run(const std::exception &e);
+  /// Writes summary.json; if it cannot be written, removes any earlier one and turns
+  /// @p status and @p message into the failure's.
+  void write_summary(const RunSummary &summary, std::uint64_t checksum,
+                     std::string &status, std::string &message) const;
+  /// Turns @p status and @p message into those of a run that could not write a file
+  /// (@p why: the file and the reason).
+  static void fail_on_write(const std::string &why, std::string &status,
+                            std::string &message);
 
   // Checkpoints (checkpoint_restart.cc).
   void serialize(Archive &ar);
@@ -103,16 +110,21 @@ private:
   /// after it.
   TimeStepControl clock;
   double dt = 0, t = 0, max_speed = 0;
-  unsigned int step_count = 0;
+  /// The largest signal number any rank had received at the last step (0: none).
+  int interrupt_signal = 0;
+  /// The step's maxima over the ranks, reduced together: the fastest particle's
+  /// speed, the interrupt signal and whether a particle went wrong (1) or not (0).
+  std::vector<double> step_maxima = std::vector<double>(3);
+  unsigned int step_count         = 0;
   /// Particles in the whole run (on all ranks).
   std::size_t n_particles = 0;
   bool resumed            = false;
   // Farthest a support reaches (for the cracks' second fields) and the smallest
   // particle spacing of the bodies (for their growth).
   double crack_reach = 0, particle_spacing = std::numeric_limits<double>::max();
-  /// Per body: the particles' positions and volume shares within a cell (for the
-  /// crack band's width)
-  std::vector<CellPlacement> body_placements;
+  /// Per body: how far its outermost particles sit inside a face of their cells (m),
+  /// for the rigid surfaces' contact
+  std::vector<double> face_depths;
 };
 } // namespace lme_mpm
 

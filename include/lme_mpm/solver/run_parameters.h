@@ -31,9 +31,8 @@ private:
 
 /**
  * The run's own entries: the problem (thickness, plane assumption, body force), time
- * stepping, output cadence and checkpoints, and the shape-function selection. The
- * parts with entries of their own (grid, materials, bodies, constraints, ...) read
- * those themselves.
+ * stepping, output cadence and checkpoints. The parts with entries of their own
+ * (grid, shape functions, materials, bodies, constraints, ...) read those themselves.
  */
 template <int dim>
 struct RunParameters
@@ -75,8 +74,6 @@ struct RunParameters
   // Checkpoint
   unsigned int checkpoint_every_steps = 0;
   double checkpoint_every_seconds     = 0;
-  // Shape functions
-  std::string shape_function;
 
   static void declare_parameters(ParameterHandler &prm);
   /// Reads and checks the entries; throws ExcBadInput naming the entry.
