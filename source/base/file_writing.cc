@@ -22,19 +22,36 @@ std::string reason(const int e)
   return std::strerror(e);
 }
 
-/// Writes all of [data, data + n) to @p fd; returns 0 or the errno of the failure.
-int write_all(const int fd, const char *data, std::size_t n)
+/// Writes all of [data, data + n) to @p fd (at @p offset if not negative); returns 0
+/// or the errno of the failure.
+int write_all(const int fd, const char *data, std::size_t n, off_t offset = -1)
 {
   while (n > 0)
   {
-    const ssize_t w = ::write(fd, data, n);
+    const ssize_t w = offset < 0 ? ::write(fd, data, n) : ::pwrite(fd, data, n, offset);
     if (w < 0 && errno == EINTR)
       continue;
     if (w <= 0)
       return w < 0 ? errno : ENOSPC;
     data += w, n -= static_cast<std::size_t>(w);
+    if (offset >= 0)
+      offset += w;
   }
   return 0;
+}
+
+/// Keeps @p path as @p previous while @p path itself stays in place (a hard link),
+/// so that a reader always finds @p path; a file system without hard links renames.
+/// Returns 0 or the errno of the failure.
+int keep_as_previous(const std::string &path, const std::string &previous)
+{
+  if (::access(path.c_str(), F_OK) != 0)
+    return 0;
+  if (::unlink(previous.c_str()) != 0 && errno != ENOENT)
+    return errno;
+  if (::link(path.c_str(), previous.c_str()) == 0)
+    return 0;
+  return std::rename(path.c_str(), previous.c_str()) == 0 ? 0 : errno;
 }
 
 /**
@@ -120,8 +137,12 @@ void write_atomically(const std::string &path,
     std::remove(tmp.c_str());
     AssertThrow(false, ExcCannotWrite(path, reason(e)));
   }
-  if (keep_previous && ::access(path.c_str(), F_OK) == 0)
-    std::rename(path.c_str(), (path + ".prev").c_str());
+  if (keep_previous)
+    if (const int e = keep_as_previous(path, path + ".prev"); e != 0)
+    {
+      std::remove(tmp.c_str());
+      AssertThrow(false, ExcCannotWrite(path + ".prev", reason(e)));
+    }
   if (std::rename(tmp.c_str(), path.c_str()) != 0)
   {
     const int e = errno;
@@ -180,12 +201,13 @@ void AppendFile::open_at(const std::string &path, const std::uint64_t size)
 void AppendFile::append(const std::string &record)
 {
   Assert(fd >= 0, dealii::ExcMessage("append() before create() or open_at()"));
-  const int e = write_all(fd, record.data(), record.size());
+  // At the end of the whole records: a fragment a failed append left (should cutting
+  // it off fail too) is overwritten by the next.
+  const int e = write_all(fd, record.data(), record.size(), static_cast<off_t>(bytes));
   if (e != 0)
   {
     // The part that was written goes: a reader finds whole records only.
-    if (::ftruncate(fd, static_cast<off_t>(bytes)) == 0)
-      ::lseek(fd, static_cast<off_t>(bytes), SEEK_SET);
+    [[maybe_unused]] const int cut = ::ftruncate(fd, static_cast<off_t>(bytes));
     AssertThrow(false, ExcCannotWrite(name, reason(e)));
   }
   bytes += record.size();

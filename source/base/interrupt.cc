@@ -27,6 +27,9 @@ void install()
 {
   std::signal(SIGINT, record);
   std::signal(SIGTERM, record);
+  // Past the file-size limit (ulimit -f) a write fails with EFBIG, which the writers
+  // report with the file's name, instead of the kernel ending the process.
+  std::signal(SIGXFSZ, SIG_IGN);
 }
 
 int received()

@@ -38,11 +38,15 @@ void VtuSeries::add_piece(
   for (unsigned int r = 0; r < n_ranks; ++r)
     pieces.push_back(base.str() + "." + std::to_string(r) + ".vtu");
   write_atomically(directory + "/" + pieces[rank], write_piece);
-  written.emplace_back(time, base.str() + ".pvtu");
   if (rank != 0)
+  {
+    written.emplace_back(time, base.str() + ".pvtu");
     return;
+  }
   write_atomically(directory + "/" + base.str() + ".pvtu",
                    [&](std::ostream &out) { write_pvtu(out, pieces); });
+  // Listed once it exists: the series never names a file that is not there.
+  written.emplace_back(time, base.str() + ".pvtu");
   write_atomically(directory + "/" + stem + ".pvd", [&](std::ostream &out)
                    { dealii::DataOutBase::write_pvd_record(out, written); });
 }

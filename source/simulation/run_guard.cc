@@ -18,10 +18,19 @@ template <int dim>
 void RunGuard<dim>::stop_if_lost(const std::size_t p, const unsigned int step,
                                  const double t) const
 {
-  if (p < particles.size())
-    AssertThrow(false,
-                ExcRunAborted(step, t, particles.id[p],
-                              point_to_string(particles.position[p]), left_the_grid));
+  if (p >= particles.size())
+    return;
+  // On several ranks this rank alone knows: not an exception every rank ends with
+  // (end_failed_run() would gather from ranks that are not there), so the program
+  // stops them all (main.cc).
+  AssertThrow(!ranks.distributed(),
+              dealii::ExcMessage("Run stopped at step " + std::to_string(step) +
+                                 ": particle " + std::to_string(particles.id[p]) +
+                                 " at " + point_to_string(particles.position[p]) +
+                                 " is outside the background grid"));
+  AssertThrow(false,
+              ExcRunAborted(step, t, particles.id[p],
+                            point_to_string(particles.position[p]), left_the_grid));
 }
 
 template <int dim>

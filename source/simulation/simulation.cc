@@ -377,7 +377,17 @@ std::map<std::string, double> Simulation<dim>::run()
 {
   TimerOutput timer(output.console(), TimerOutput::never, TimerOutput::wall_times);
   const auto start = std::chrono::steady_clock::now();
-  output.prepare(resumed, clock);
+  try
+  {
+    output.prepare(resumed, clock);
+  }
+  catch (const ExcCannotWrite &)
+  {
+    // Nothing of this run is written: no summary either, not even a resumed one's.
+    if (output.writes_files())
+      std::remove((output.directory() + "/summary.json").c_str());
+    throw;
+  }
   std::string status = "completed", message, stop_reason;
   try
   {
@@ -402,10 +412,20 @@ std::map<std::string, double> Simulation<dim>::run()
     status = "interrupted";
     // The checkpoint before the row end_failed_run() adds: a resumed run cuts that
     // row, and its history is the uninterrupted run's.
+    std::string checkpoint_failure;
     if (checkpoints_on())
-      write_checkpoint();
+      try
+      {
+        write_checkpoint();
+      }
+      catch (const ExcCannotWrite &failure)
+      {
+        checkpoint_failure = input::concise_message(failure);
+      }
     message = end_failed_run(e);
-    if (checkpoints_on())
+    if (!checkpoint_failure.empty())
+      fail_on_write(checkpoint_failure, status, message);
+    else if (checkpoints_on())
       message +=
           "; checkpoint written: continue with lme-mpm --resume " + output.directory();
     else
@@ -421,7 +441,8 @@ std::map<std::string, double> Simulation<dim>::run()
   }
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  RunSummary summary = output.summarise(wall, step_count, clock, t);
+  const std::string status_at_end = status;
+  RunSummary summary              = output.summarise(wall, step_count, clock, t);
   if (!output.failed_end_file().empty())
     fail_on_write(output.failed_end_file(), status, message);
   summary.status               = status;
@@ -431,8 +452,13 @@ std::map<std::string, double> Simulation<dim>::run()
   if (output.writes_files())
     write_summary(summary, checksum, status, message);
   // Past this point the output is on disk (on every rank); the caller reports the
-  // failure.
-  parts.ranks.barrier();
+  // failure. A file that rank 0 alone writes and could not fails every rank alike.
+  if (parts.ranks.max(status == status_at_end ? 0.0 : 1.0) > 0)
+  {
+    if (status == status_at_end)
+      fail_on_write("", status, message);
+    message = parts.ranks.broadcast(message);
+  }
   // Every rank ends alike; main() tells this from an error on one rank only.
   AssertThrow(status != "interrupted", ExcRunInterrupted(message));
   AssertThrow(status == "completed" || status == "stopped", ExcRunFailed(message));

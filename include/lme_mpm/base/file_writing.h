@@ -20,9 +20,11 @@ namespace files
 /**
  * Writes @p path through @p write so that a reader sees the old file or the complete
  * new one, never a part: the bytes go to path.tmp, which replaces @p path only when
- * every byte is written and the file is closed. With @p keep_previous the file it
- * replaces is kept as path.prev. A failure removes path.tmp, leaves @p path as it
- * was and throws ExcCannotWrite naming @p path and the system's reason.
+ * every byte is written and the file is closed (no fsync: a crash of the machine
+ * itself is not covered). With @p keep_previous the file it replaces is kept as
+ * path.prev (a hard link, so that @p path never goes missing). A failure removes
+ * path.tmp, leaves @p path as it was and throws ExcCannotWrite naming the file and
+ * the system's reason.
  */
 void write_atomically(const std::string &path,
                       const std::function<void(std::ostream &)> &write,
@@ -32,9 +34,10 @@ void write_atomically(const std::string &path,
 void write_atomically(const std::string &path, const std::string &text);
 
 /**
- * A file that grows by whole records (history.csv): each append reaches the disk
- * before it returns, and one that fails is cut off again, so the file holds whole
- * records only; it throws ExcCannotWrite naming the file and the reason.
+ * A file that grows by whole records (history.csv): each append is written to the
+ * file (not buffered) before it returns, and one that fails is cut off again, so the
+ * file holds whole records only; it throws ExcCannotWrite naming the file and the
+ * reason.
  */
 class AppendFile
 {
