@@ -282,6 +282,16 @@ def main():
               fmt(s.get("fracture_energy_ratio"))),
              ("`peak_stress` / f_t of the weak zone", "1",
               fmt(s.get("peak_stress", 0) / 2.7e6))], s, cmd)
+    if wanted("inclined_tension_bar_3d"):
+        s, _, cmd = case("inclined_tension_bar_3d_30_35", "prm/inclined_tension_bar_3d.prm",
+                         ["Scene/inclined tension bar/Angle=30",
+                          "Scene/inclined tension bar/Out-of-plane angle=35"])
+        blocks["inclined_tension_bar_3d"] = block(
+            [("`fracture_energy_ratio` at (30, 35) degrees", "1",
+              fmt(s.get("fracture_energy_ratio"))),
+             ("`peak_stress` / f_t of the weak zone", "1",
+              fmt(s.get("peak_stress", 0) / 2.7e6)),
+             ("`crack_area` (m^2)", "W^2 = 1e-4", fmt(s.get("crack_area")))], s, cmd)
     if wanted("mode_i_panel"):
         s, _, cmd = case("mode_i_panel", "prm/mode_i_panel.prm")
         blocks["mode_i_panel"] = block(

@@ -352,13 +352,13 @@ void FractureCoupling<dim>::update(ParticleStore<dim> &store, const CrackSet<dim
   {
     crack_bins.build(cracks->polylines(), radius);
     neighbours.build(
-        store.position, radius, &store.body_id,
+        store, *grid, radius,
         [&](const std::size_t p, const std::size_t q)
         { return crack_bins.separates(store.position[p], store.position[q]); },
         row_seeds);
   }
   else
-    neighbours.build(store.position, radius, &store.body_id, {}, row_seeds);
+    neighbours.build(store, *grid, radius, {}, row_seeds);
   rows_built += neighbours.n_rows();
   updates += 1;
   parallel::for_range(n,

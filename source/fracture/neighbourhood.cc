@@ -9,14 +9,16 @@ namespace lme_mpm
 {
 template <int dim>
 void Neighbourhood<dim>::build(
-    const std::vector<Point<dim>> &x, const double radius,
-    const std::vector<std::uint16_t> *body,
+    const ParticleStore<dim> &store, const BackgroundGrid<dim> &grid, const double radius,
     const std::function<bool(std::size_t, std::size_t)> &separated,
     const std::vector<std::uint8_t> *seeds)
 {
-  const std::size_t n = x.size();
-  Assert(!body || body->size() == n, ExcDimensionMismatch(body->size(), n));
+  const std::size_t n = store.size();
   Assert(!seeds || seeds->size() == n, ExcDimensionMismatch(seeds->size(), n));
+  AssertThrow(store.cell_offsets().size() == grid.n_cells() + 1 &&
+                  store.cell_offsets().back() == n,
+              ExcMessage("Neighbourhood::build needs the particles sorted by the "
+                         "grid's cells (ParticleStore::sort_by_cell)"));
   offsets.assign(n + 1, 0);
   ends.assign(n, 0);
   list.clear();
@@ -24,7 +26,7 @@ void Neighbourhood<dim>::build(
   pairs = 0;
   if (n == 0)
     return;
-  // No seed (or no particle that takes a row), no row: nothing to bin.
+  // No seed (or no particle that takes a row), no row: nothing to search.
   if (seeds)
   {
     std::uint8_t any = 0;
@@ -34,104 +36,130 @@ void Neighbourhood<dim>::build(
       return;
   }
   // A single body needs no comparisons of bodies.
-  bool several_bodies = false;
-  if (body)
-    for (std::size_t p = 0; p < n && !several_bodies; ++p)
-      several_bodies = (*body)[p] != (*body)[0];
+  const std::vector<std::uint16_t> &body = store.body_id;
+  bool several_bodies                    = false;
+  for (std::size_t p = 0; p < n && !several_bodies; ++p)
+    several_bodies = body[p] != body[0];
 
-  bins.build(x, radius);
+  const CellSearch<dim> cells(grid);
   wanted.assign(n, 1);
   if (seeds)
-    mark_rows_near_seeds(x, radius, *seeds);
+    mark_rows_near_seeds(store, cells, radius, *seeds);
 
   // `same` is a template argument so that a single body pays nothing for the body
   // test.
   const bool roomy = seeds != nullptr;
   if (separated && several_bodies)
     fill_rows(
-        x, radius,
+        store, cells, radius,
         [&](const std::size_t p, const std::uint32_t q)
-        { return (*body)[p] == (*body)[q] && (p == q || !separated(p, q)); },
+        { return body[p] == body[q] && (p == q || !separated(p, q)); },
         roomy);
   else if (separated)
     fill_rows(
-        x, radius,
+        store, cells, radius,
         [&](const std::size_t p, const std::uint32_t q)
         { return p == q || !separated(p, q); },
         roomy);
   else if (several_bodies)
     fill_rows(
-        x, radius,
-        [&](const std::size_t p, const std::uint32_t q)
-        { return (*body)[p] == (*body)[q]; },
+        store, cells, radius,
+        [&](const std::size_t p, const std::uint32_t q) { return body[p] == body[q]; },
         roomy);
   else
     fill_rows(
-        x, radius, [](std::size_t, std::uint32_t) { return true; }, roomy);
+        store, cells, radius, [](std::size_t, std::uint32_t) { return true; }, roomy);
 }
 
 template <int dim>
-void Neighbourhood<dim>::mark_rows_near_seeds(const std::vector<Point<dim>> &x,
+void Neighbourhood<dim>::mark_rows_near_seeds(const ParticleStore<dim> &store,
+                                              const CellSearch<dim> &cells,
                                               const double radius,
                                               const std::vector<std::uint8_t> &seeds)
 {
-  const std::size_t n = x.size();
-  const double r2     = radius * radius;
-  seeded.assign(bins.n_bins(), 0);
+  const std::size_t n                     = store.size();
+  const std::vector<Point<dim>> &x        = store.position;
+  const std::vector<std::size_t> &in_cell = store.cell_offsets();
+  const std::size_t n_cells               = in_cell.size() - 1;
+  const double r2                         = radius * radius;
+  // The cells that hold a seed, and the cells within the radius of one: a particle
+  // elsewhere has no seed near, which most particles learn from one look at their
+  // cell's flag (a seeded cell's reach is searched from its own box, once).
+  seeded.assign(n_cells, 0);
+  near_seeds.assign(n_cells, 0);
   for (std::size_t p = 0; p < n; ++p)
-    seeded[bins.bin_of(p)] |= seeds[p] & seed;
-  parallel::for_range(n,
-                      [&](const std::size_t b, const std::size_t e)
-                      {
-                        for (std::size_t p = b; p < e; ++p)
-                        {
-                          bool near = false;
-                          if (seeds[p] & takes_row)
-                            bins.for_cubes(x[p],
-                                           [&](const std::size_t c)
-                                           {
-                                             if (near || !seeded[c])
-                                               return;
-                                             for (auto s = bins.begin(c);
-                                                  s != bins.end(c) && !near; ++s)
-                                               near = (seeds[*s] & seed) &&
-                                                      x[*s].distance_square(x[p]) <= r2;
-                                           });
-                          wanted[p] = near;
-                        }
-                      });
+    seeded[store.cell[p]] |= seeds[p] & seed;
+  typename CellSearch<dim>::Scratch scratch;
+  for (std::size_t c = 0; c < n_cells; ++c)
+    if (seeded[c])
+    {
+      const BoundingBox<dim> box = cells.box(c);
+      cells.for_cells_near(box.center(),
+                           radius + 0.5 * box.get_boundary_points().first.distance(
+                                              box.get_boundary_points().second),
+                           scratch, [&](const std::size_t k) { near_seeds[k] = 1; });
+    }
+  parallel::for_range(
+      n,
+      [&](const std::size_t b, const std::size_t e)
+      {
+        typename CellSearch<dim>::Scratch scratch;
+        for (std::size_t p = b; p < e; ++p)
+        {
+          // A seed is within the radius of itself.
+          bool near = (seeds[p] & takes_row) && (seeds[p] & seed);
+          if ((seeds[p] & takes_row) && !near && near_seeds[store.cell[p]])
+            cells.for_cells_near(
+                x[p], radius, scratch,
+                [&](const std::size_t c)
+                {
+                  if (near || !seeded[c])
+                    return;
+                  for (std::size_t s = in_cell[c]; s < in_cell[c + 1] && !near; ++s)
+                    near = (seeds[s] & seed) && x[s].distance_square(x[p]) <= r2;
+                });
+          wanted[p] = near;
+        }
+      });
 }
 
 template <int dim>
 template <class Same>
-void Neighbourhood<dim>::fill_rows(const std::vector<Point<dim>> &x, const double radius,
+void Neighbourhood<dim>::fill_rows(const ParticleStore<dim> &store,
+                                   const CellSearch<dim> &cells, const double radius,
                                    const Same &same, const bool roomy)
 {
-  const std::size_t n = x.size();
-  const double r2     = radius * radius;
-  // Visits the neighbours of p in increasing index order of cubes; within a cube the
-  // indices ascend. f(q) is called for each q within the radius that same accepts.
-  const auto for_neighbours = [&](const std::size_t p, auto &&f)
+  const std::size_t n                     = store.size();
+  const std::vector<Point<dim>> &x        = store.position;
+  const std::vector<std::size_t> &in_cell = store.cell_offsets();
+  const double r2                         = radius * radius;
+  // Visits the neighbours of p in increasing cell index, and within a cell in
+  // increasing particle index: increasing particle index over all, as the store is
+  // sorted by cell. f(q) is called for each q within the radius that same accepts.
+  const auto for_neighbours =
+      [&](const std::size_t p, typename CellSearch<dim>::Scratch &scratch, auto &&f)
   {
-    bins.for_cubes(x[p],
-                   [&](const std::size_t b)
-                   {
-                     for (auto s = bins.begin(b); s != bins.end(b); ++s)
-                       if (x[*s].distance_square(x[p]) <= r2 && same(p, *s))
-                         f(*s);
-                   });
+    cells.for_cells_near(x[p], radius, scratch,
+                         [&](const std::size_t c)
+                         {
+                           for (std::size_t s = in_cell[c]; s < in_cell[c + 1]; ++s)
+                             if (x[s].distance_square(x[p]) <= r2 && same(p, s))
+                               f(static_cast<std::uint32_t>(s));
+                         });
   };
   parallel::for_range(n,
                       [&](const std::size_t b, const std::size_t e)
                       {
+                        typename CellSearch<dim>::Scratch scratch;
                         for (std::size_t p = b; p < e; ++p)
                         {
                           std::size_t c = 0;
                           if (wanted[p] && roomy)
-                            bins.for_cubes(x[p], [&](const std::size_t k)
-                                           { c += bins.end(k) - bins.begin(k); });
+                            cells.for_cells_near(x[p], radius, scratch,
+                                                 [&](const std::size_t k)
+                                                 { c += in_cell[k + 1] - in_cell[k]; });
                           else if (wanted[p])
-                            for_neighbours(p, [&](std::uint32_t) { ++c; });
+                            for_neighbours(p, scratch, [&](std::uint32_t) { ++c; });
                           offsets[p + 1] = c;
                         }
                       });
@@ -145,15 +173,13 @@ void Neighbourhood<dim>::fill_rows(const std::vector<Point<dim>> &x, const doubl
   parallel::for_range(n,
                       [&](const std::size_t b, const std::size_t e)
                       {
+                        typename CellSearch<dim>::Scratch scratch;
                         for (std::size_t p = b; p < e; ++p)
                         {
                           std::size_t k = offsets[p];
                           if (wanted[p])
-                          {
-                            for_neighbours(p,
+                            for_neighbours(p, scratch,
                                            [&](const std::uint32_t q) { list[k++] = q; });
-                            std::sort(list.begin() + offsets[p], list.begin() + k);
-                          }
                           ends[p] = k;
                         }
                       });

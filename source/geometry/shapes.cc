@@ -2,6 +2,7 @@
 #include <lme_mpm/geometry/boundary_shapes.h>
 #include <lme_mpm/geometry/geometry.h>
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -259,6 +260,101 @@ private:
   double x0, y0, length, width, tx, ty;
 };
 
+/**
+ * A box turned out of the grid's axes: centre, side lengths along its own axes and the
+ * turn. In 2D `turned_box(cx, cy, length, width, angle)`, the length along `angle`
+ * (degrees from +x). In 3D `turned_box(cx, cy, cz, length, width, depth, angle,
+ * out_of_plane_angle)`: the length axis is turned by `angle` about z and then tilted
+ * towards +z by `out_of_plane_angle` (a turn about the turned y axis), so it points
+ * along (cos b cos a, cos b sin a, sin b); the width lies along the turned y axis
+ * (-sin a, cos a, 0) and the depth along their cross product.
+ */
+template <int dim>
+class TurnedBox : public Geometry<dim>
+{
+public:
+  explicit TurnedBox(const std::vector<double> &a) : centre(point_from<dim>(a, 0))
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+    {
+      half[d] = 0.5 * a[dim + d];
+      if (!(half[d] > 0))
+        throw std::invalid_argument("turned_box: the side lengths must be positive");
+    }
+    const double t = a[2 * dim] * M_PI / 180;
+    const double b = dim == 3 ? a[2 * dim + 1] * M_PI / 180 : 0.0;
+    axes[0][0] = std::cos(b) * std::cos(t), axes[0][1] = std::cos(b) * std::sin(t);
+    axes[1][0] = -std::sin(t), axes[1][1] = std::cos(t);
+    if constexpr (dim == 3)
+    {
+      axes[0][2] = std::sin(b);
+      axes[2]    = cross_product_3d(axes[0], axes[1]);
+    }
+  }
+  bool inside(const Point<dim> &x) const override
+  {
+    const Tensor<1, dim> l = local(x);
+    for (unsigned int d = 0; d < dim; ++d)
+      if (std::abs(l[d]) > half[d])
+        return false;
+    return true;
+  }
+  BoundingBox<dim> bounding_box() const override
+  {
+    // Over the 2^dim corners.
+    Point<dim> lo, hi;
+    for (unsigned int d = 0; d < dim; ++d)
+      lo[d] = 1e300, hi[d] = -1e300;
+    for (unsigned int corner = 0; corner < (1u << dim); ++corner)
+    {
+      Point<dim> p = centre;
+      for (unsigned int k = 0; k < dim; ++k)
+        p += ((corner >> k) & 1 ? half[k] : -half[k]) * axes[k];
+      for (unsigned int d = 0; d < dim; ++d)
+        lo[d] = std::min(lo[d], p[d]), hi[d] = std::max(hi[d], p[d]);
+    }
+    return BoundingBox<dim>({lo, hi});
+  }
+  bool signed_distance(const Point<dim> &x, double &distance,
+                       Tensor<1, dim> &normal) const override
+  {
+    // The axis-aligned box's rule in the box's own axes, the normal turned back.
+    const Tensor<1, dim> l = local(x);
+    Tensor<1, dim> q, outside;
+    unsigned int deepest = 0;
+    for (unsigned int k = 0; k < dim; ++k)
+    {
+      q[k]       = std::abs(l[k]) - half[k];
+      outside[k] = q[k] > 0 ? (l[k] < 0 ? -q[k] : q[k]) : 0.0;
+      if (q[k] > q[deepest])
+        deepest = k;
+    }
+    Tensor<1, dim> n_local;
+    const double out = outside.norm();
+    if (out > 0)
+      distance = out, n_local = outside / out;
+    else
+      distance = q[deepest], n_local[deepest] = l[deepest] < 0 ? -1.0 : 1.0;
+    normal = Tensor<1, dim>();
+    for (unsigned int k = 0; k < dim; ++k)
+      normal += n_local[k] * axes[k];
+    return true;
+  }
+
+private:
+  Tensor<1, dim> local(const Point<dim> &x) const
+  {
+    Tensor<1, dim> l;
+    for (unsigned int k = 0; k < dim; ++k)
+      l[k] = (x - centre) * axes[k];
+    return l;
+  }
+
+  Point<dim> centre;
+  Tensor<1, dim> half;
+  std::array<Tensor<1, dim>, dim> axes;
+};
+
 template <int dim, class Shape>
 typename GeometryRegistry<dim>::Create make()
 {
@@ -292,6 +388,17 @@ GeometryRegistry<dim> &GeometryRegistry<dim>::instance()
                           "slot(x, y, length, width, angle): a notch from (x, y) "
                           "towards angle (degrees from +x)",
                           make<dim, Slot<dim>>()});
+    registry.add("turned_box",
+                 {dim == 2 ? 5u : 8u,
+                  dim == 2 ? "turned_box(cx, cy, length, width, angle): a rectangle "
+                             "centred on (cx, cy), its length along angle (degrees "
+                             "from +x)"
+                           : "turned_box(cx, cy, cz, length, width, depth, angle, "
+                             "out_of_plane_angle): a box centred on (cx, cy, cz), its "
+                             "length along (cos b cos a, cos b sin a, sin b) for a = "
+                             "angle, b = out_of_plane_angle (degrees), its width along "
+                             "(-sin a, cos a, 0)",
+                  make<dim, TurnedBox<dim>>()});
     registry.add("polygon",
                  {Entry::any_number,
                   dim == 2 ? "polygon(x1, y1, x2, y2, ..., xn, yn): n >= 3 vertices"

@@ -75,16 +75,25 @@ std::string cylinder_shape(const double cx, const double cy, const double r,
 }
 
 template <int dim>
-std::string ramped_velocity(const double vx, const double vy, const double ramp)
+std::string ramped_velocity(const Tensor<1, dim> &v, const double ramp)
 {
   const std::string factor = ramp > 0 ? "(if(t < " + number(ramp) +
                                             ", 0.5 * (1 - cos(pi * t / " + number(ramp) +
                                             ")), 1))"
                                       : "1";
-  std::string s = number(vx) + " * " + factor + "; " + number(vy) + " * " + factor;
-  if (dim == 3)
-    s += "; 0";
+  std::string s;
+  for (unsigned int d = 0; d < dim; ++d)
+    s += (d > 0 ? "; " : "") + number(v[d]) + " * " + factor;
   return s;
+}
+
+template <int dim>
+std::string ramped_velocity(const double vx, const double vy, const double ramp)
+{
+  // 0 in z: the scenes that give two components move in the x-y plane.
+  Tensor<1, dim> v;
+  v[0] = vx, v[1] = vy;
+  return ramped_velocity<dim>(v, ramp);
 }
 
 template <int dim>
@@ -462,6 +471,8 @@ template std::string cylinder_shape<2>(double, double, double, double);
 template std::string cylinder_shape<3>(double, double, double, double);
 template std::string ramped_velocity<2>(double, double, double);
 template std::string ramped_velocity<3>(double, double, double);
+template std::string ramped_velocity<2>(const Tensor<1, 2> &, double);
+template std::string ramped_velocity<3>(const Tensor<1, 3> &, double);
 template std::string load_fell_below(const SceneState<2> &, unsigned int, double);
 template std::string load_fell_below(const SceneState<3> &, unsigned int, double);
 template CrackClusters crack_clusters(const ParticleStore<2> &, unsigned int, double,

@@ -433,3 +433,23 @@ TEST(Plugins, BuiltInsRegisterEachNameOnce)
 {
   EXPECT_TRUE(lme_mpm::registration_log().refused.empty());
 }
+
+TEST(BadInput, InclinedBarOutOfPlaneAngleIsThreeDimensional)
+{
+  // The 2D bar has one angle; a tilt out of its plane, or a 3D centre with two
+  // coordinates, names the entry.
+  const std::string out = lme_mpm_test::scratch("tilted_2d");
+  std::string msg =
+      lme_mpm_test::run_error(lme_mpm_test::scene("inclined_tension_bar.prm"),
+                              {"Scene/inclined tension bar/Out-of-plane angle=10"}, out);
+  EXPECT_NE(msg.find("Scene/inclined tension bar/Out-of-plane angle"), std::string::npos)
+      << msg;
+  msg = lme_mpm_test::run_error(lme_mpm_test::scene("inclined_tension_bar_3d.prm"),
+                                {"Scene/inclined tension bar/Centre=0.04, 0.04"}, out);
+  EXPECT_NE(msg.find("Scene/inclined tension bar/Centre"), std::string::npos) << msg;
+  msg =
+      lme_mpm_test::run_error(lme_mpm_test::scene("inclined_tension_bar_3d.prm"),
+                              {"Scene/inclined tension bar/Out-of-plane angle=91"}, out);
+  EXPECT_NE(msg.find("Scene/inclined tension bar/Out-of-plane angle"), std::string::npos)
+      << msg;
+}

@@ -51,6 +51,19 @@ void check_trigger_changes_nothing(const std::string &model_name, ParameterHandl
       factor.push_back(noise(rng));
     }
   const std::size_t n = full.size();
+  // Sorted by the cells of a grid, as the solver's store is.
+  BackgroundGrid<2> grid;
+  grid.reinit(Point<2>(), {{std::vector<double>(20, h), std::vector<double>(20, h)}});
+  for (ParticleStore<2> *P : {&full, &seeded})
+  {
+    for (std::size_t p = 0; p < n; ++p)
+    {
+      std::array<unsigned int, 2> ij;
+      ASSERT_TRUE(grid.locate(P->position[p], ij));
+      P->cell[p] = grid.cell_index(ij);
+    }
+    P->sort_by_cell(grid.n_cells());
+  }
   Neighbourhood<2> nb_full, nb_seeded;
   FractureFields F_full, F_seeded;
   std::vector<std::uint8_t> seeds(n);
@@ -86,8 +99,8 @@ void check_trigger_changes_nothing(const std::string &model_name, ParameterHandl
       }
     }
     const double radius = model->epsilon(h);
-    nb_full.build(full.position, radius, &full.body_id);
-    nb_seeded.build(seeded.position, radius, &seeded.body_id, {}, &seeds);
+    nb_full.build(full, grid, radius);
+    nb_seeded.build(seeded, grid, radius, {}, &seeds);
     skipped_rows += n - nb_seeded.n_rows();
     model->update(full, nb_full, F_full, 0, n, 0);
     model->update(seeded, nb_seeded, F_seeded, 0, n, 0);

@@ -217,3 +217,62 @@ TEST(BoundaryShapes, BadMeshInputNamesTheEntry)
   EXPECT_NE(junk.find("Body 1/Holes"), std::string::npos) << junk;
   EXPECT_NE(junk.find("cannot read the mesh file"), std::string::npos) << junk;
 }
+
+TEST(BoundaryShapes, TurnedBoxInItsOwnAxes)
+{
+  // A 60 x 10 x 4 box turned by 30 degrees about z and tilted 35 degrees towards +z:
+  // points along its own axes are inside up to the half sides and outside beyond; its
+  // bounding box holds its corners; the signed distance is the axis-aligned box's in
+  // the box's own frame.
+  const double a = 30 * M_PI / 180, b = 35 * M_PI / 180;
+  const Tensor<1, 3> t(
+      {std::cos(b) * std::cos(a), std::cos(b) * std::sin(a), std::sin(b)}),
+      w({-std::sin(a), std::cos(a), 0}), n = cross_product_3d(t, w);
+  const Point<3> c(0.1, 0.2, 0.3);
+  const auto box = GeometryRegistry<3>::instance().create(
+      "turned_box(0.1, 0.2, 0.3, 0.06, 0.01, 0.004, 30, 35)", "test");
+  for (const auto &[axis, half] :
+       {std::pair{t, 0.03}, std::pair{w, 0.005}, std::pair{n, 0.002}})
+    for (const double sign : {-1.0, 1.0})
+    {
+      EXPECT_TRUE(box->inside(c + 0.99 * sign * half * axis));
+      EXPECT_FALSE(box->inside(c + 1.01 * sign * half * axis));
+      double distance;
+      Tensor<1, 3> normal;
+      ASSERT_TRUE(
+          box->signed_distance(c + (half + 0.001) * sign * axis, distance, normal));
+      EXPECT_NEAR(distance, 0.001, 1e-12);
+      EXPECT_NEAR((normal - sign * axis).norm(), 0, 1e-12);
+    }
+  double distance;
+  Tensor<1, 3> normal;
+  ASSERT_TRUE(box->signed_distance(c, distance, normal));
+  EXPECT_NEAR(distance, -0.002, 1e-12);
+  const BoundingBox<3> bounds = box->bounding_box();
+  for (const double s : {-0.03, 0.03})
+    for (const double u : {-0.005, 0.005})
+      for (const double v : {-0.002, 0.002})
+      {
+        const Point<3> corner = c + s * t + u * w + v * n;
+        EXPECT_TRUE(bounds.point_inside(corner, 1e-12));
+        for (unsigned int d = 0; d < 3; ++d)
+          EXPECT_GE(bounds.side_length(d), 0);
+      }
+  // In 2D the same rectangle as a slot from its lower end.
+  const auto turned = GeometryRegistry<2>::instance().create(
+      "turned_box(0.1, 0.2, 0.06, 0.01, 30)", "test");
+  const auto slot = GeometryRegistry<2>::instance().create(
+      "slot(" + std::to_string(0.1 - 0.03 * std::cos(a)) + ", " +
+          std::to_string(0.2 - 0.03 * std::sin(a)) + ", 0.06, 0.01, 30)",
+      "test");
+  unsigned int same = 0, inside = 0;
+  for (unsigned int i = 0; i < 100; ++i)
+    for (unsigned int j = 0; j < 100; ++j)
+    {
+      const Point<2> x(0.06 + 0.0008 * i, 0.16 + 0.0008 * j);
+      same += turned->inside(x) == slot->inside(x);
+      inside += turned->inside(x);
+    }
+  EXPECT_GE(same, 9990u);
+  EXPECT_GT(inside, 700u);
+}

@@ -10,6 +10,8 @@
 #include <lme_mpm/materials/material_set.h>
 #include <lme_mpm/particles/damage_form.h>
 
+#include "sorted_particles.h"
+
 #include <cmath>
 #include <iostream>
 #include <string>
@@ -61,6 +63,7 @@ public:
     coupling.parse_parameters(prm, materials, grid, 1);
     // The particle's volume is the band's: h per unit area of its crack.
     store.add(Point<dim>(), 2400 * h, h, 0, 0);
+    lme_mpm_test::sort_by_grid_cells(store, grid);
     // lambda and M in plane strain (2D) or 3D.
     lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
     M      = lambda + E / (1 + nu);

@@ -10,6 +10,7 @@
 #include <lme_mpm/fracture/neighbourhood.h>
 #include <lme_mpm/fracture/softening_law.h>
 
+#include "sorted_particles.h"
 #include "test_helpers.h"
 
 #include <algorithm>
@@ -21,6 +22,19 @@
 #include <random>
 
 using namespace lme_mpm;
+
+namespace
+{
+/// Sets @p grid to one cell around the one particle of @p P, located and sorted as a
+/// neighbourhood needs them; returns @p P.
+const ParticleStore<2> &sorted_on_one_cell(ParticleStore<2> &P, BackgroundGrid<2> &grid)
+{
+  grid.reinit(P.position[0] + Point<2>(-0.5, -0.5), {{{1.0}, {1.0}}});
+  P.cell[0] = 0;
+  P.sort_by_cell(1);
+  return P;
+}
+} // namespace
 
 TEST(SofteningLaws, AreaEqualsFractureEnergy)
 {
@@ -99,8 +113,9 @@ TEST(Eigensoftening, UnloadingDoesNotHeal)
 
   ParticleStore<2> P;
   P.add(Point<2>(0, 0), 1.0, 1.0, 0, 0);
+  BackgroundGrid<2> grid;
   Neighbourhood<2> nb;
-  nb.build(P.position, model->epsilon(0.01));
+  nb.build(sorted_on_one_cell(P, grid), grid, model->epsilon(0.01));
   FractureFields F;
   auto load = [&](const double strain)
   {
@@ -163,8 +178,9 @@ TEST(Eigensoftening, DissipatesFractureEnergyWhateverItsOwnStressAtOnset)
           FractureModelRegistry<2>::instance().create("eigensoftening", prm, fc);
       ParticleStore<2> P;
       P.add(Point<2>(0, 0), 1.0, h, 0, 0);
+      BackgroundGrid<2> grid;
       Neighbourhood<2> nb;
-      nb.build(P.position, model->epsilon(0.01));
+      nb.build(sorted_on_one_cell(P, grid), grid, model->epsilon(0.01));
       const double s0   = ratio * f_t;
       P.onset_strain[0] = s0 / E;
       P.onset_stress[0] = s0;
@@ -224,6 +240,7 @@ TEST(Eigensoftening, OnsetAveragesOverTheParticlesOwnBodyOnly)
       store.stress[p][0][0] = body == 0 ? 30e6 : 1e6;
       store.strain[p][0][0] = store.stress[p][0][0] / 30e9;
     }
+  lme_mpm_test::sort_by_grid_cells(store, grid);
   coupling.update(store);
   for (std::size_t p = 0; p < store.size(); ++p)
     if (store.body_id[p] == 0)

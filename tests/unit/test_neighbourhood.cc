@@ -11,6 +11,7 @@
 #include <lme_mpm/fracture/neighbourhood.h>
 #include <lme_mpm/fracture/softening_law.h>
 
+#include "sorted_particles.h"
 #include "test_helpers.h"
 
 #include <algorithm>
@@ -22,6 +23,7 @@
 #include <random>
 
 using namespace lme_mpm;
+using lme_mpm_test::sorted_store;
 
 namespace
 {
@@ -40,14 +42,18 @@ void check_neighbourhood_against_brute_force(
   std::vector<std::uint16_t> ids(n, 0);
   if (body)
     std::transform(x.begin(), x.end(), ids.begin(), body);
+  // Cells smaller than the radius, so that rows span several cells.
+  BackgroundGrid<dim> grid;
+  const ParticleStore<dim> store = sorted_store(x, ids, 0.6 * radius, grid);
   Neighbourhood<dim> nb;
-  nb.build(x, radius, body ? &ids : nullptr);
+  nb.build(store, grid, radius);
   ASSERT_EQ(nb.size(), n);
+  const std::vector<Point<dim>> &y = store.position;
   for (unsigned int p = 0; p < n; ++p)
   {
     std::vector<std::uint32_t> brute;
     for (unsigned int q = 0; q < n; ++q)
-      if (x[p].distance(x[q]) <= radius && ids[p] == ids[q])
+      if (y[p].distance(y[q]) <= radius && store.body_id[p] == store.body_id[q])
         brute.push_back(q);
     ASSERT_EQ(std::vector<std::uint32_t>(nb.begin(p), nb.end(p)), brute)
         << "particle " << p;
@@ -86,11 +92,13 @@ TEST(Neighbourhood, StaysWithinTheParticlesOwnBody)
   for (unsigned int i = 0; i < 60; ++i)
     for (unsigned int j = 0; j < 40; ++j)
       x.emplace_back(0.01 * i, 0.01 * j), body.push_back(i < 30 ? 0 : 1);
+  BackgroundGrid<2> grid;
+  const ParticleStore<2> store = sorted_store(x, body, 0.02, grid);
   Neighbourhood<2> one, two;
   MultithreadInfo::set_thread_limit(1);
-  one.build(x, 0.025, &body);
+  one.build(store, grid, 0.025);
   MultithreadInfo::set_thread_limit(2);
-  two.build(x, 0.025, &body);
+  two.build(store, grid, 0.025);
   MultithreadInfo::set_thread_limit();
   ASSERT_EQ(one.n_pairs(), two.n_pairs());
   for (std::size_t p = 0; p < x.size(); ++p)
@@ -108,14 +116,17 @@ TEST(Neighbourhood, StaysOnItsSideOfAnExplicitCrack)
       {Point<2>(0.2, 0.1), Point<2>(0.2, 0.3)}};
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Point<2>> x(3000);
-  for (auto &p : x)
+  std::vector<Point<2>> points(3000);
+  for (auto &p : points)
     p = Point<2>(u(rng), u(rng));
   const double radius = 0.05;
+  BackgroundGrid<2> grid;
+  const ParticleStore<2> store   = sorted_store(points, {}, 0.03, grid);
+  const std::vector<Point<2>> &x = store.position;
   CrackSegmentBins<2> bins;
   bins.build(lines, radius);
   Neighbourhood<2> nb;
-  nb.build(x, radius, nullptr,
+  nb.build(store, grid, radius,
            [&](const std::size_t p, const std::size_t q)
            { return bins.separates(x[p], x[q]); });
   const auto cross =
@@ -164,11 +175,13 @@ TEST(Neighbourhood, BuildTimePerParticle)
   for (unsigned int i = 0; i < 400; ++i)
     for (unsigned int j = 0; j < 250; ++j)
       x.emplace_back(0.5e-3 * i + 0.25e-3, 0.5e-3 * j + 0.25e-3);
+  BackgroundGrid<2> grid;
+  const ParticleStore<2> store = sorted_store(x, {}, 1e-3, grid);
   Neighbourhood<2> nb;
-  nb.build(x, 2e-3);
+  nb.build(store, grid, 2e-3);
   const auto start = std::chrono::steady_clock::now();
   for (int k = 0; k < 5; ++k)
-    nb.build(x, 2e-3);
+    nb.build(store, grid, 2e-3);
   const double ns =
       std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start)
           .count() /

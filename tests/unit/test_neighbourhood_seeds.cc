@@ -1,4 +1,5 @@
-// Neighbourhood rows limited to the particles near a seed are the full rows there.
+// Neighbourhood rows limited to the particles near a seed are the full rows there (on
+// a graded grid).
 #include <deal.II/base/parameter_handler.h>
 
 #include <gtest/gtest.h>
@@ -7,6 +8,7 @@
 #include <lme_mpm/fracture/fracture_model.h>
 #include <lme_mpm/fracture/neighbourhood.h>
 
+#include "sorted_particles.h"
 #include "test_helpers.h"
 
 #include <cmath>
@@ -22,22 +24,36 @@ void check_seeded_rows(const unsigned int n, const double radius, const double s
 {
   std::mt19937 rng(5 + dim);
   std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Point<dim>> x(n);
-  for (auto &p : x)
-    for (unsigned int d = 0; d < dim; ++d)
-      p[d] = u(rng);
-  std::vector<std::uint16_t> body(n);
-  std::vector<std::uint8_t> seeds(n);
+  // Random points in the unit square or cube on a graded grid (cells from 0.02 to
+  // 0.06 wide, some narrower and some wider than the radius), sorted by its cells as
+  // the solver's store is.
+  std::array<std::vector<double>, dim> steps;
+  for (unsigned int d = 0; d < dim; ++d)
+    for (double x = 0; x < 1 - 1e-12;)
+    {
+      const double s = std::min(1 - x, 0.02 + 0.04 * u(rng));
+      steps[d].push_back(s), x += s;
+    }
+  BackgroundGrid<dim> grid;
+  grid.reinit(Point<dim>(), steps);
+  ParticleStore<dim> store;
   for (unsigned int p = 0; p < n; ++p)
   {
-    body[p] = x[p][0] < 0.5 ? 0 : 1;
+    Point<dim> x;
+    for (unsigned int d = 0; d < dim; ++d)
+      x[d] = u(rng);
+    store.add(x, 1.0, 1.0, 0, x[0] < 0.5 ? 0 : 1);
+  }
+  lme_mpm_test::sort_by_grid_cells(store, grid);
+  const std::vector<Point<dim>> &x = store.position;
+  std::vector<std::uint8_t> seeds(n);
+  for (unsigned int p = 0; p < n; ++p)
     // Seeds at random; seven particles in ten take a row.
     seeds[p] = (u(rng) < share ? Neighbourhood<dim>::seed : 0) |
                (u(rng) < 0.7 ? Neighbourhood<dim>::takes_row : 0);
-  }
   Neighbourhood<dim> full, seeded;
-  full.build(x, radius, &body);
-  seeded.build(x, radius, &body, {}, &seeds);
+  full.build(store, grid, radius);
+  seeded.build(store, grid, radius, {}, &seeds);
   std::size_t rows = 0;
   for (unsigned int p = 0; p < n; ++p)
   {
@@ -65,7 +81,7 @@ void check_seeded_rows(const unsigned int n, const double radius, const double s
   {
     for (auto &f : seeds)
       f &= keep;
-    seeded.build(x, radius, &body, {}, &seeds);
+    seeded.build(store, grid, radius, {}, &seeds);
     EXPECT_EQ(seeded.n_rows(), 0u);
     for (unsigned int p = 0; p < n; ++p)
       ASSERT_FALSE(seeded.has_row(p));

@@ -4,7 +4,8 @@
 #include <deal.II/base/point.h>
 
 #include <lme_mpm/base/dealii.h>
-#include <lme_mpm/fracture/cube_bins.h>
+#include <lme_mpm/fracture/cell_search.h>
+#include <lme_mpm/particles/particle_store.h>
 
 #include <cstdint>
 #include <functional>
@@ -17,10 +18,11 @@ namespace lme_mpm
  * itself included, in compressed rows. Given body ids, only particles of the
  * particle's own body are neighbours, so a platen, roller or hammer pressed against a
  * specimen does not enter the specimen's averages (nor the specimen the tool's); a
- * predicate can also cut pairs across explicit crack faces. Built
- * in linear time by binning the particles into cubes as wide as the radius (a
- * cell-linked list), so each particle looks only at the 3^dim cubes around it. Rows
- * are sorted, so the result does not depend on the thread count.
+ * predicate can also cut pairs across explicit crack faces. Built in linear time from
+ * the store's own order: the particles are sorted by background cell, so each
+ * particle looks only at the particles of the cells within the radius (CellSearch),
+ * and visiting those cells in increasing index gives every row in increasing particle
+ * index without a sort (the order the models sum in, whatever the thread count).
  *
  * Rows can be limited to the particles within the radius of a few seed particles
  * (those where a fracture criterion can trigger) and, among them, to those that take a
@@ -39,15 +41,16 @@ public:
   };
 
   /**
-   * Rebuilds the lists for @p positions with search radius @p radius; with @p body
-   * (one id per particle), pairs of different bodies are left out while building, and
-   * so are pairs (p, q) for which @p separated returns true (for example the two faces
-   * of an explicit crack). With @p seeds (Flags per particle), only the particles
-   * flagged takes_row within @p radius of one flagged seed (of any body, on either side
-   * of a crack) get their row; the others get an empty one.
+   * Rebuilds the lists for the particles of @p store, which must be sorted by the
+   * cells of @p grid (ParticleStore::sort_by_cell() after their cells were located),
+   * with search radius @p radius. Pairs of different bodies are left out, and so are
+   * pairs (p, q) for which @p separated returns true (for example the two faces of an
+   * explicit crack). With @p seeds (Flags per particle), only the particles flagged
+   * takes_row within @p radius of one flagged seed (of any body, on either side of a
+   * crack) get their row; the others get an empty one.
    */
-  void build(const std::vector<Point<dim>> &positions, double radius,
-             const std::vector<std::uint16_t> *body                         = nullptr,
+  void build(const ParticleStore<dim> &store, const BackgroundGrid<dim> &grid,
+             double radius,
              const std::function<bool(std::size_t, std::size_t)> &separated = {},
              const std::vector<std::uint8_t> *seeds                         = nullptr);
 
@@ -69,27 +72,26 @@ public:
 
 private:
   /// Flags in `wanted` the particles that take a row and lie within the radius of a
-  /// seed; cubes that hold no seed are skipped without looking at their particles.
-  void mark_rows_near_seeds(const std::vector<Point<dim>> &x, double radius,
-                            const std::vector<std::uint8_t> &seeds);
+  /// seed; cells that hold no seed are skipped without looking at their particles.
+  void mark_rows_near_seeds(const ParticleStore<dim> &store, const CellSearch<dim> &cells,
+                            double radius, const std::vector<std::uint8_t> &seeds);
   /**
    * Fills and sorts the rows of the wanted particles with the neighbours that
    * same(p, q) accepts. With @p roomy, every row gets room for all the particles of
-   * the cubes around it, so one pass over the candidates fills it (the distance and
-   * crack tests are the cost); otherwise (every particle has a row, and that room
+   * the cells within the radius, so one pass over the candidates fills it (the distance
+   * and crack tests are the cost); otherwise (every particle has a row, and that room
    * would be about 3 (2D) or 6 (3D) times the rows) a counting pass sizes them
    * exactly.
    */
   template <class Same>
-  void fill_rows(const std::vector<Point<dim>> &x, double radius, const Same &same,
-                 bool roomy);
+  void fill_rows(const ParticleStore<dim> &store, const CellSearch<dim> &cells,
+                 double radius, const Same &same, bool roomy);
 
   // Row p is list[offsets[p], ends[p]); a row may have room beyond its end.
   std::vector<std::size_t> offsets, ends;
   std::vector<std::uint32_t> list;
-  // Binning scratch, kept between builds.
-  CubeBins<dim> bins;
-  std::vector<std::uint8_t> seeded, wanted;
+  // Scratch, kept between builds.
+  std::vector<std::uint8_t> seeded, near_seeds, wanted;
   std::size_t rows = 0, pairs = 0;
 };
 } // namespace lme_mpm

@@ -27,6 +27,10 @@ std::string cylinder_shape(double cx, double cy, double r, double length);
 template <int dim>
 std::string ramped_velocity(double vx, double vy, double ramp);
 
+/// The same for a velocity with every component given (@p v, times the ramp).
+template <int dim>
+std::string ramped_velocity(const Tensor<1, dim> &v, double ramp);
+
 /**
  * Throws naming scene entries @p owner (the ones that size and place @p what) unless
  * the x-y box [x0, x1] x [y0, y1] lies within the grid's 'Grid/Lower corner' and
