@@ -76,12 +76,12 @@ private:
   void mark_rows_near_seeds(const ParticleStore<dim> &store, const CellSearch<dim> &cells,
                             double radius, const std::vector<std::uint8_t> &seeds);
   /**
-   * Fills and sorts the rows of the wanted particles with the neighbours that
-   * same(p, q) accepts. With @p roomy, every row gets room for all the particles of
-   * the cells within the radius, so one pass over the candidates fills it (the distance
-   * and crack tests are the cost); otherwise (every particle has a row, and that room
-   * would be about 3 (2D) or 6 (3D) times the rows) a counting pass sizes them
-   * exactly.
+   * Fills the rows of the wanted particles with the neighbours that same(p, q)
+   * accepts, in increasing index. With @p roomy, every row gets room for all the
+   * particles of the cells within the radius, so one pass over the candidates fills it
+   * (the distance and crack tests are the cost); otherwise (every particle has a row,
+   * and that room would be about 2 (2D) or 3.2 (3D) times the rows, at a radius of 1.5
+   * cells and 2 particles per cell direction) a counting pass sizes them exactly.
    */
   template <class Same>
   void fill_rows(const ParticleStore<dim> &store, const CellSearch<dim> &cells,
