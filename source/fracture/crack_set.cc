@@ -266,18 +266,14 @@ void CrackSegmentBins<dim>::build(const std::vector<std::vector<Point<dim>>> &al
 }
 
 template <int dim>
-bool CrackSegmentBins<dim>::separates(const Point<dim> &p, const Point<dim> &q) const
+template <class F>
+bool CrackSegmentBins<dim>::any_bin_over(const Point<dim> &lo, const Point<dim> &hi,
+                                         const F &f) const
 {
-  if (bins.empty())
-    return false;
-  const auto &lines = *this->lines;
-  // A segment that crosses p -> q holds a point of it, so it is in one of the (at
-  // most 2^dim) bins the pair's bounding box overlaps.
   std::array<unsigned int, dim> first, last;
   for (unsigned int d = 0; d < dim; ++d)
   {
-    const double a = std::min(p[d], q[d]) - lower[d];
-    const double b = std::max(p[d], q[d]) - lower[d];
+    const double a = lo[d] - lower[d], b = hi[d] - lower[d];
     if (b < 0 || a > n_bins[d] * side)
       return false;
     first[d] = std::min(n_bins[d] - 1, unsigned(std::max(0.0, a) / side));
@@ -289,31 +285,67 @@ bool CrackSegmentBins<dim>::separates(const Point<dim> &p, const Point<dim> &q) 
     std::size_t b = 0, stride = 1;
     for (unsigned int d = 0; d < dim; ++d)
       b += k[d] * stride, stride *= n_bins[d];
-    for (const auto &[l, s] : bins[b])
-    {
-      // The crosses() test: p, q on different sides of a -> b (a point on the line
-      // counts as left), and a, b not both strictly on one side of p -> q.
-      const Point<dim> &a = lines[l][s], &e = lines[l][s + 1];
-      if ((orientation(a, e, p) >= 0) == (orientation(a, e, q) >= 0))
-        continue;
-      const double oa = orientation(p, q, a), ob = orientation(p, q, e);
-      if (!((oa <= 0 && ob >= 0) || (oa >= 0 && ob <= 0)))
-        continue;
-      // Crossed: still connected if the path round an end of the crack is within the
-      // radius (near a tip the material joins the two faces).
-      const Point<dim> &first = lines[l].front(), &last = lines[l].back();
-      const double detour = std::min(p.distance(first) + first.distance(q),
-                                     p.distance(last) + last.distance(q));
-      if (detour > side)
-        return true;
-    }
+    if (f(bins[b]))
+      return true;
     unsigned int d = 0;
     while (d < dim && ++k[d] > last[d])
       k[d] = first[d], ++d;
     if (d == dim)
-      break;
+      return false;
   }
-  return false;
+}
+
+template <int dim>
+bool CrackSegmentBins<dim>::separates(const Point<dim> &p, const Point<dim> &q) const
+{
+  if (bins.empty())
+    return false;
+  const auto &lines = *this->lines;
+  // A segment that crosses p -> q holds a point of it, so it is in one of the (at
+  // most 2^dim) bins the pair's bounding box overlaps.
+  Point<dim> lo, hi;
+  for (unsigned int d = 0; d < dim; ++d)
+    lo[d] = std::min(p[d], q[d]), hi[d] = std::max(p[d], q[d]);
+  return any_bin_over(
+      lo, hi,
+      [&](const std::vector<std::pair<unsigned int, unsigned int>> &bin)
+      {
+        for (const auto &[l, s] : bin)
+        {
+          // The crosses() test: p, q on different sides of a -> b (a point on the line
+          // counts as left), and a, b not both strictly on one side of p -> q.
+          const Point<dim> &a = lines[l][s], &e = lines[l][s + 1];
+          if ((orientation(a, e, p) >= 0) == (orientation(a, e, q) >= 0))
+            continue;
+          const double oa = orientation(p, q, a), ob = orientation(p, q, e);
+          if (!((oa <= 0 && ob >= 0) || (oa >= 0 && ob <= 0)))
+            continue;
+          // Crossed: still connected if the path round an end of the crack is within
+          // the radius (near a tip the material joins the two faces).
+          const Point<dim> &first = lines[l].front(), &last = lines[l].back();
+          const double detour = std::min(p.distance(first) + first.distance(q),
+                                         p.distance(last) + last.distance(q));
+          if (detour > side)
+            return true;
+        }
+        return false;
+      });
+}
+
+template <int dim>
+bool CrackSegmentBins<dim>::may_separate(const Point<dim> &p) const
+{
+  if (bins.empty())
+    return false;
+  // The bins of every pair's box lie among those of the box p +- radius (widened a
+  // little, as a pair within the radius by its rounded distance may reach a hair
+  // beyond it along one direction).
+  Point<dim> lo, hi;
+  for (unsigned int d = 0; d < dim; ++d)
+    lo[d] = p[d] - side * (1 + 1e-9), hi[d] = p[d] + side * (1 + 1e-9);
+  return any_bin_over(lo, hi,
+                      [](const std::vector<std::pair<unsigned int, unsigned int>> &bin)
+                      { return !bin.empty(); });
 }
 
 template <int dim>

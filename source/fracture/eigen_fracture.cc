@@ -152,6 +152,10 @@ public:
     {
       if (P.material_id[p] != material_id || P.failed[p])
         continue;
+      // An intact particle without a row has no seed near: it cannot reach onset, and
+      // costs no more (most particles, most steps).
+      if (P.onset_strain[p] == 0 && !nb.has_row(p))
+        continue;
       // Lengths from the particle's own cell: on a graded grid a crack in coarse cells
       // spreads over a wider band than one in fine cells.
       const double h_p          = F.spacing_of(p, grid_spacing);
@@ -160,8 +164,6 @@ public:
       const auto [eps_I, sig_I] = damage_drive(P, p, F.max_principal_stress[p]);
       if (P.onset_strain[p] == 0)
       {
-        if (!nb.has_row(p))
-          continue;
         // With oriented damage a cracked neighbour's stress follows its crack's law,
         // not the field the onset samples: the mean is over the intact ones.
         double ms = 0, m = 0;

@@ -178,19 +178,32 @@ double FractureCoupling<dim>::reach_at(const double h) const
 }
 
 template <int dim>
-void FractureCoupling<dim>::prepare(ParticleStore<dim> &store)
+double FractureCoupling<dim>::update_spacings(const ParticleStore<dim> &store)
 {
   const std::size_t n = store.size();
-  // Per-particle lengths follow the particles: recomputed when they were reordered
-  // (sorted by cell, or exchanged between ranks).
-  if (prepared_size == n && prepared_version == store.order_version())
-    return;
-  // On a graded grid each particle's lengths follow the cell it started in; the
-  // neighbourhood is searched to the widest radius, and each model keeps the
-  // neighbours within its particle's own.
-  double h_largest = grid->min_spacing();
+  double h_largest    = grid->min_spacing();
   if (uniform_grid)
+  {
     fields.spacing.clear();
+    return h_largest;
+  }
+  // Sorted by cell since the last call: the lengths follow the sort's permutation,
+  // without locating every particle again.
+  const bool just_sorted = prepared_size == n && fields.spacing.size() == n &&
+                           store.sorted_version() == store.order_version() &&
+                           prepared_version + 1 == store.order_version();
+  if (just_sorted)
+  {
+    const std::vector<std::uint32_t> &from = store.sort_permutation();
+    spacing_scratch.resize(n);
+    parallel::for_range(n,
+                        [&](const std::size_t b, const std::size_t e)
+                        {
+                          for (std::size_t p = b; p < e; ++p)
+                            spacing_scratch[p] = fields.spacing[from[p]];
+                        });
+    fields.spacing.swap(spacing_scratch);
+  }
   else
   {
     fields.spacing.resize(n);
@@ -207,9 +220,24 @@ void FractureCoupling<dim>::prepare(ParticleStore<dim> &store)
                             fields.spacing[p] = h;
                           }
                         });
-    for (const double h : fields.spacing)
-      h_largest = std::max(h_largest, h);
   }
+  for (const double h : fields.spacing)
+    h_largest = std::max(h_largest, h);
+  return h_largest;
+}
+
+template <int dim>
+void FractureCoupling<dim>::prepare(ParticleStore<dim> &store)
+{
+  const std::size_t n = store.size();
+  // Per-particle lengths follow the particles: recomputed when they were reordered
+  // (sorted by cell, or exchanged between ranks).
+  if (prepared_size == n && prepared_version == store.order_version())
+    return;
+  // On a graded grid each particle's lengths follow the cell it started in; the
+  // neighbourhood is searched to the widest radius, and each model keeps the
+  // neighbours within its particle's own.
+  double h_largest = update_spacings(store);
   // Every rank searches to the radius of all the particles.
   if (ranks)
     h_largest = ranks->max(h_largest);
@@ -314,10 +342,15 @@ void FractureCoupling<dim>::take_snapshot(const ParticleStore<dim> &store,
     {
       // Along the crack's normal where the particle has one.
       const double chi = store.failed[p] ? 1.0 : store.damage[p];
-      const double strain =
-          cracked ? store.crack_normal[p] * (store.strain[p] * store.crack_normal[p])
-                  : max_principal(store.strain[p]);
-      fields.crack_strain[p] = chi > 0 ? chi * std::max(0.0, strain) : 0.0;
+      if (chi > 0)
+      {
+        const double strain =
+            cracked ? store.crack_normal[p] * (store.strain[p] * store.crack_normal[p])
+                    : max_principal(store.strain[p]);
+        fields.crack_strain[p] = chi * std::max(0.0, strain);
+      }
+      else
+        fields.crack_strain[p] = 0;
     }
     // Only alive particles of a material with a model read their row; a softening
     // particle reads it every step where its band shares their openings or is
@@ -355,7 +388,8 @@ void FractureCoupling<dim>::update(ParticleStore<dim> &store, const CrackSet<dim
         store, *grid, radius,
         [&](const std::size_t p, const std::size_t q)
         { return crack_bins.separates(store.position[p], store.position[q]); },
-        row_seeds);
+        row_seeds,
+        [&](const std::size_t p) { return crack_bins.may_separate(store.position[p]); });
   }
   else
     neighbours.build(store, *grid, radius, {}, row_seeds);

@@ -11,7 +11,8 @@ template <int dim>
 void Neighbourhood<dim>::build(
     const ParticleStore<dim> &store, const BackgroundGrid<dim> &grid, const double radius,
     const std::function<bool(std::size_t, std::size_t)> &separated,
-    const std::vector<std::uint8_t> *seeds)
+    const std::vector<std::uint8_t> *seeds,
+    const std::function<bool(std::size_t)> &may_be_separated)
 {
   const std::size_t n = store.size();
   Assert(!seeds || seeds->size() == n, ExcDimensionMismatch(seeds->size(), n));
@@ -46,6 +47,20 @@ void Neighbourhood<dim>::build(
   if (seeds)
     mark_rows_near_seeds(store, cells, radius, *seeds);
 
+  // The rows whose pairs the crack test must see: one question per row, where most
+  // rows lie far from every crack.
+  if (separated)
+  {
+    cut.assign(n, 1);
+    if (may_be_separated)
+      parallel::for_range(n,
+                          [&](const std::size_t b, const std::size_t e)
+                          {
+                            for (std::size_t p = b; p < e; ++p)
+                              cut[p] = wanted[p] && may_be_separated(p);
+                          });
+  }
+
   // `same` is a template argument so that a single body pays nothing for the body
   // test.
   const bool roomy = seeds != nullptr;
@@ -53,13 +68,13 @@ void Neighbourhood<dim>::build(
     fill_rows(
         store, cells, radius,
         [&](const std::size_t p, const std::uint32_t q)
-        { return body[p] == body[q] && (p == q || !separated(p, q)); },
+        { return body[p] == body[q] && (p == q || !cut[p] || !separated(p, q)); },
         roomy);
   else if (separated)
     fill_rows(
         store, cells, radius,
         [&](const std::size_t p, const std::uint32_t q)
-        { return p == q || !separated(p, q); },
+        { return p == q || !cut[p] || !separated(p, q); },
         roomy);
   else if (several_bodies)
     fill_rows(
@@ -151,13 +166,30 @@ void Neighbourhood<dim>::fill_rows(const ParticleStore<dim> &store,
                       [&](const std::size_t b, const std::size_t e)
                       {
                         typename CellSearch<dim>::Scratch scratch;
+                        // Roomy rows: the particles of the cells within reach of the
+                        // particle's cell (a superset of those within reach of the
+                        // particle), counted once for the particles of one cell.
+                        std::size_t room_cell = store.cell_offsets().size(), room = 0;
                         for (std::size_t p = b; p < e; ++p)
                         {
                           std::size_t c = 0;
                           if (wanted[p] && roomy)
-                            cells.for_cells_near(x[p], radius, scratch,
-                                                 [&](const std::size_t k)
-                                                 { c += in_cell[k + 1] - in_cell[k]; });
+                          {
+                            if (store.cell[p] != room_cell)
+                            {
+                              room_cell                  = store.cell[p];
+                              room                       = 0;
+                              const BoundingBox<dim> box = cells.box(room_cell);
+                              cells.for_cells_near(
+                                  box.center(),
+                                  radius + 0.5 * box.get_boundary_points().first.distance(
+                                                     box.get_boundary_points().second),
+                                  scratch,
+                                  [&](const std::size_t k)
+                                  { room += in_cell[k + 1] - in_cell[k]; });
+                            }
+                            c = room;
+                          }
                           else if (wanted[p])
                             for_neighbours(p, scratch, [&](std::uint32_t) { ++c; });
                           offsets[p + 1] = c;

@@ -248,24 +248,6 @@ void BackgroundGrid<dim>::reinit(const Point<dim> &lower,
 }
 
 template <int dim>
-bool BackgroundGrid<dim>::locate_graded(const double x, const unsigned int d,
-                                        unsigned int &i) const
-{
-  // x is inside the grid (locate() checked); the bucket's cell is at most a step or two
-  // off (a bucket is no wider than a cell; rounding of the product), settled against
-  // the coordinates: c[i] <= x < c[i + 1], or the last cell for x on the upper face.
-  const auto &c       = coords[d];
-  const auto &buckets = bucket_cell[d];
-  const auto b = static_cast<std::size_t>((x - c.front()) * inverse_bucket_width[d]);
-  i            = buckets[std::min(b, buckets.size() - 1)];
-  while (i > 0 && x < c[i])
-    --i;
-  while (i + 2 < c.size() && x >= c[i + 1])
-    ++i;
-  return true;
-}
-
-template <int dim>
 Point<dim> BackgroundGrid<dim>::lower_corner() const
 {
   Point<dim> p;

@@ -85,7 +85,7 @@ bool ParticleStore<dim>::sort_by_cell(const unsigned int n_cells)
           reordered[q] = field[permutation[q]];
         field.swap(reordered);
       });
-  ++version;
+  sorted_at = ++version;
   return true;
 }
 

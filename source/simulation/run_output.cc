@@ -435,6 +435,8 @@ RunSummary RunOutput<dim>::summarise(const double wall, const unsigned int steps
   results["smallest_time_step"]        = clock.smallest_step();
   results["travel_limited_steps"]      = clock.limited_steps();
   results["particle_steps_per_second"] = n_particles * double(steps) / wall;
+  if (const auto [changed, sorts] = parts.transfer.reorders(); sorts > 0)
+    results["particle_reorder_share"] = double(changed) / sorts;
   results["max_energy_drift"]          = energy.max_drift();
   results["max_fast_particle_cells"]   = fast_particles.max();
   results["max_energy_drift_absolute"] = energy.max_absolute_drift();

@@ -52,7 +52,8 @@ std::size_t GridTransfer<dim>::locate_and_sort()
                       });
   if (lost.load() < n)
     return lost.load();
-  particles.sort_by_cell(grid.n_cells());
+  reordered += particles.sort_by_cell(grid.n_cells());
+  ++sorts;
   return n;
 }
 

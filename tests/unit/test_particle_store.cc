@@ -25,7 +25,15 @@ TEST(ParticleStore, CountingSortKeepsFieldsTogether)
     store.add(Point<2>(p, 0), p + 1.0, 1.0, 0, 0);
     store.cell[p] = rng() % 37;
   }
+  const std::vector<double> masses = store.mass;
+  const std::uint64_t before       = store.order_version();
   EXPECT_TRUE(store.sort_by_cell(37));
+  // The permutation says where each particle came from, for caches kept outside.
+  EXPECT_EQ(store.order_version(), before + 1);
+  EXPECT_EQ(store.sorted_version(), store.order_version());
+  ASSERT_EQ(store.sort_permutation().size(), store.size());
+  for (std::size_t p = 0; p < store.size(); ++p)
+    EXPECT_EQ(store.mass[p], masses[store.sort_permutation()[p]]);
   for (std::size_t p = 0; p < store.size(); ++p)
   {
     if (p > 0)
@@ -44,4 +52,7 @@ TEST(ParticleStore, CountingSortKeepsFieldsTogether)
     for (std::size_t p = off[c]; p < off[c + 1]; ++p)
       EXPECT_EQ(store.cell[p], c);
   EXPECT_FALSE(store.sort_by_cell(37)); // already sorted: no reorder
+  EXPECT_EQ(store.sorted_version(), store.order_version());
+  store.mark_reordered(); // a change the permutation does not describe
+  EXPECT_NE(store.sorted_version(), store.order_version());
 }

@@ -135,8 +135,19 @@ public:
    * so a particle at the tip keeps the neighbours an uncracked one would have.
    */
   bool separates(const Point<dim> &p, const Point<dim> &q) const;
+  /**
+   * False if no point q within the radius of @p p can be separated from it
+   * (separates(p, q) is false for all of them): no segment lies in a bin that box
+   * reaches. A particle far from every crack then skips the test for its pairs.
+   */
+  bool may_separate(const Point<dim> &p) const;
 
 private:
+  /// Whether f(bin) is true for a bin that the box [lo, hi] overlaps (asked in
+  /// increasing bin index until one is).
+  template <class F>
+  bool any_bin_over(const Point<dim> &lo, const Point<dim> &hi, const F &f) const;
+
   const std::vector<std::vector<Point<dim>>> *lines = nullptr;
   Point<dim> lower;
   double side = 0;

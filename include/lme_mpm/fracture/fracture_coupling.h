@@ -118,6 +118,9 @@ public:
 private:
   /// Sets every particle's strength factor from its material's field, and the floors.
   void assign_strengths(ParticleStore<dim> &store);
+  /// Fills each particle's cell size (FractureFields::spacing) on a graded grid;
+  /// returns the largest (the grid's smallest on a uniform one).
+  double update_spacings(const ParticleStore<dim> &store);
 
   std::vector<std::unique_ptr<FractureModel<dim>>> models; ///< per material, or null
   std::vector<StrengthField<dim>> strength_fields;         ///< per material
@@ -140,8 +143,9 @@ private:
   static constexpr std::size_t unprepared = static_cast<std::size_t>(-1);
   std::size_t prepared_size               = unprepared;
   std::uint64_t prepared_version          = 0;
-  const RankReductions *ranks             = nullptr;
-  double radius                           = 0; ///< of the neighbourhood search
+  std::vector<double> spacing_scratch; ///< room for the reordered spacings
+  const RankReductions *ranks = nullptr;
+  double radius               = 0; ///< of the neighbourhood search
   /// Without a model that gives no trigger: rows only around the seeds.
   bool seeded_rows = false;
   /// A body's crack band reaches beyond its own cell: softening particles then read

@@ -47,12 +47,15 @@ public:
    * pairs (p, q) for which @p separated returns true (for example the two faces of an
    * explicit crack). With @p seeds (Flags per particle), only the particles flagged
    * takes_row within @p radius of one flagged seed (of any body, on either side of a
-   * crack) get their row; the others get an empty one.
+   * crack) get their row; the others get an empty one. With @p may_be_separated,
+   * @p separated is asked only for the pairs of particles p for which
+   * may_be_separated(p) is true (those near a crack face), once per row.
    */
   void build(const ParticleStore<dim> &store, const BackgroundGrid<dim> &grid,
              double radius,
              const std::function<bool(std::size_t, std::size_t)> &separated = {},
-             const std::vector<std::uint8_t> *seeds                         = nullptr);
+             const std::vector<std::uint8_t> *seeds                         = nullptr,
+             const std::function<bool(std::size_t)> &may_be_separated       = {});
 
   /// The number of particles.
   std::size_t size() const { return offsets.empty() ? 0 : offsets.size() - 1; }
@@ -91,7 +94,7 @@ private:
   std::vector<std::size_t> offsets, ends;
   std::vector<std::uint32_t> list;
   // Scratch, kept between builds.
-  std::vector<std::uint8_t> seeded, near_seeds, wanted;
+  std::vector<std::uint8_t> seeded, near_seeds, wanted, cut;
   std::size_t rows = 0, pairs = 0;
 };
 } // namespace lme_mpm

@@ -10,6 +10,7 @@
 
 #include <lme_mpm/base/dealii.h>
 
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <vector>
@@ -147,7 +148,24 @@ public:
   }
 
 private:
-  bool locate_graded(double x, unsigned int d, unsigned int &i) const;
+  /// locate() along a graded direction; inline, as every particle calls it a few times
+  /// per step.
+  bool locate_graded(const double x, const unsigned int d, unsigned int &i) const
+  {
+    // x is inside the grid (locate() checked); the bucket's cell is at most a step or
+    // two off (a bucket is no wider than a cell; rounding of the product), settled
+    // against the coordinates: c[i] <= x < c[i + 1], or the last cell for x on the
+    // upper face.
+    const auto &c       = coords[d];
+    const auto &buckets = bucket_cell[d];
+    const auto b = static_cast<std::size_t>((x - c.front()) * inverse_bucket_width[d]);
+    i            = buckets[std::min(b, buckets.size() - 1)];
+    while (i > 0 && x < c[i])
+      --i;
+    while (i + 2 < c.size() && x >= c[i + 1])
+      ++i;
+    return true;
+  }
 
   std::array<std::vector<double>, dim> coords;
   std::array<double, dim> uniform_h{};

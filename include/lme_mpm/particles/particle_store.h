@@ -46,6 +46,14 @@ public:
   std::uint64_t order_version() const { return version; }
   /// Records a change of order or size made by a caller (bumps order_version()).
   void mark_reordered() { ++version; }
+  /**
+   * The reorder of the last sort_by_cell() that changed the order: the particle now at
+   * q was at sort_permutation()[q]. It describes the last change of order only while
+   * order_version() == sorted_version(); a cache kept for the order before it
+   * (version sorted_version() - 1) can follow it instead of being rebuilt.
+   */
+  const std::vector<std::uint32_t> &sort_permutation() const { return permutation; }
+  std::uint64_t sorted_version() const { return sorted_at; }
 
   // Kinematics.
   std::vector<Point<dim>> position;
@@ -114,7 +122,7 @@ public:
 private:
   std::vector<std::size_t> offsets;
   std::vector<std::uint32_t> permutation;
-  std::uint64_t version = 0;
+  std::uint64_t version = 0, sorted_at = 0;
 };
 
 } // namespace lme_mpm

@@ -12,6 +12,7 @@
 #include <lme_mpm/solver/explicit_newmark.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <functional>
 #include <utility>
 #include <vector>
@@ -55,6 +56,9 @@ public:
    * index of a particle outside the grid (reproducible), or the number of particles.
    */
   std::size_t locate_and_sort();
+  /// How many locate_and_sort() calls changed the particles' order, of how many
+  /// (what a cache of particle indices kept across steps would have to follow).
+  std::pair<std::uint64_t, std::uint64_t> reorders() const { return {reordered, sorts}; }
 
   /**
    * Computes the shape functions chunk by chunk, lets @p remap(begin, end) redirect
@@ -246,6 +250,7 @@ private:
   const BackgroundGrid<dim> &grid;
   ParticleStore<dim> &particles;
   const unsigned int n_threads;
+  std::uint64_t sorts = 0, reordered = 0;
   Connectivity<dim> conn;
   NodalFields<dim> fields;
   // How many cell layers the supports have reached below and above their particles'
