@@ -19,6 +19,7 @@
 #include <lme_mpm/simulation/run.h>
 #include <lme_mpm/simulation/simulation.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 #include <sstream>
@@ -116,9 +117,19 @@ void stress_update(benchmark::State &state)
 void neighbourhood(benchmark::State &state)
 {
   MultithreadInfo::set_thread_limit(1);
+  // The neighbourhood reads the store's order: the particles sorted by their cells.
+  ParticleStore<2> P            = block().particles;
+  const BackgroundGrid<2> &grid = block().grid;
+  std::array<unsigned int, 2> ijk;
+  for (std::size_t p = 0; p < P.size(); ++p)
+  {
+    grid.locate(P.position[p], ijk);
+    P.cell[p] = grid.cell_index(ijk);
+  }
+  P.sort_by_cell(grid.n_cells());
   Neighbourhood<2> nb;
   for (auto _ : state)
-    nb.build(block().particles.position, 2 * h);
+    nb.build(P, grid, 2 * h);
   state.SetItemsProcessed(state.iterations() * block().particles.size());
 }
 

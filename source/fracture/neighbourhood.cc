@@ -166,30 +166,13 @@ void Neighbourhood<dim>::fill_rows(const ParticleStore<dim> &store,
                       [&](const std::size_t b, const std::size_t e)
                       {
                         typename CellSearch<dim>::Scratch scratch;
-                        // Roomy rows: the particles of the cells within reach of the
-                        // particle's cell (a superset of those within reach of the
-                        // particle), counted once for the particles of one cell.
-                        std::size_t room_cell = store.cell_offsets().size(), room = 0;
                         for (std::size_t p = b; p < e; ++p)
                         {
                           std::size_t c = 0;
                           if (wanted[p] && roomy)
-                          {
-                            if (store.cell[p] != room_cell)
-                            {
-                              room_cell                  = store.cell[p];
-                              room                       = 0;
-                              const BoundingBox<dim> box = cells.box(room_cell);
-                              cells.for_cells_near(
-                                  box.center(),
-                                  radius + 0.5 * box.get_boundary_points().first.distance(
-                                                     box.get_boundary_points().second),
-                                  scratch,
-                                  [&](const std::size_t k)
-                                  { room += in_cell[k + 1] - in_cell[k]; });
-                            }
-                            c = room;
-                          }
+                            cells.for_cells_near(x[p], radius, scratch,
+                                                 [&](const std::size_t k)
+                                                 { c += in_cell[k + 1] - in_cell[k]; });
                           else if (wanted[p])
                             for_neighbours(p, scratch, [&](std::uint32_t) { ++c; });
                           offsets[p + 1] = c;

@@ -27,6 +27,7 @@ TEST(ParticleStore, CountingSortKeepsFieldsTogether)
   }
   const std::vector<double> masses = store.mass;
   const std::uint64_t before       = store.order_version();
+  EXPECT_NE(store.sorted_version(), before); // no sort yet
   EXPECT_TRUE(store.sort_by_cell(37));
   // The permutation says where each particle came from, for caches kept outside.
   EXPECT_EQ(store.order_version(), before + 1);

@@ -122,7 +122,9 @@ public:
 private:
   std::vector<std::size_t> offsets;
   std::vector<std::uint32_t> permutation;
-  std::uint64_t version = 0, sorted_at = 0;
+  std::uint64_t version = 0;
+  /// order_version() after the last reordering sort (none yet: no version).
+  std::uint64_t sorted_at = static_cast<std::uint64_t>(-1);
 };
 
 } // namespace lme_mpm

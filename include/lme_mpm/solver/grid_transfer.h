@@ -56,8 +56,9 @@ public:
    * index of a particle outside the grid (reproducible), or the number of particles.
    */
   std::size_t locate_and_sort();
-  /// How many locate_and_sort() calls changed the particles' order, of how many
-  /// (what a cache of particle indices kept across steps would have to follow).
+  /// How many locate_and_sort() calls changed the particles' order, of how many,
+  /// the first call (since the run or its resume started) left out: what a cache of
+  /// particle indices kept across steps would have to follow.
   std::pair<std::uint64_t, std::uint64_t> reorders() const { return {reordered, sorts}; }
 
   /**
@@ -251,6 +252,7 @@ private:
   ParticleStore<dim> &particles;
   const unsigned int n_threads;
   std::uint64_t sorts = 0, reordered = 0;
+  bool located_once = false;
   Connectivity<dim> conn;
   NodalFields<dim> fields;
   // How many cell layers the supports have reached below and above their particles'
