@@ -49,16 +49,17 @@ void Neighbourhood<dim>::build(
 
   // The rows whose pairs the crack test must see: one question per row, where most
   // rows lie far from every crack.
-  if (separated)
-  {
+  if (separated && !may_be_separated)
     cut.assign(n, 1);
-    if (may_be_separated)
-      parallel::for_range(n,
-                          [&](const std::size_t b, const std::size_t e)
-                          {
-                            for (std::size_t p = b; p < e; ++p)
-                              cut[p] = wanted[p] && may_be_separated(p);
-                          });
+  else if (separated)
+  {
+    cut.resize(n);
+    parallel::for_range(n,
+                        [&](const std::size_t b, const std::size_t e)
+                        {
+                          for (std::size_t p = b; p < e; ++p)
+                            cut[p] = wanted[p] && may_be_separated(p);
+                        });
   }
 
   // `same` is a template argument so that a single body pays nothing for the body
