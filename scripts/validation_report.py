@@ -317,6 +317,26 @@ def main():
               fmt(s.get("dissipated_energy", 0) / G_F_D_t, 3)),
              ("snapped-back particles", "0",
               fmt(s.get("eigensoftening_snap_back_particles")))], s, cmd)
+    if wanted("brazilian_3d"):
+        s, _, cmd = case("brazilian_3d", "prm/brazilian_3d.prm")
+        e = entries(os.path.join(args.out, "brazilian_3d"))
+        f_t = number(e, "Material 1/Fracture/Tensile strength")
+        # The plane-strain disc with the same entries at the same cell size.
+        s2, _, _ = case("brazilian_3d_plane_strain", "prm/brazilian.prm",
+                        ["Grid/Cell size=0.005", "Scene/brazilian/Strip width=0.025",
+                         "Shape functions/Type=ugimp", "Scene/brazilian/Stop at load fraction=0.4",
+                         "Time/End time=4e-3"])
+        blocks["brazilian_3d"] = block(
+            [("splitting strength / f_t", "about 1 (Rocco et al. 1999: within 25 %)",
+              fmt(s.get("splitting_strength", 0) / f_t)),
+             ("splitting strength / the 2D plane-strain disc's (same cell size)",
+              "within 10 %", fmt(s.get("splitting_strength", 0) /
+                                 s2.get("splitting_strength", float("nan")), 3)),
+             ("`crack_plane_deviation` (cells)", "at most 1",
+              fmt(s.get("crack_plane_deviation"), 3)),
+             ("`fracture_energy_ratio`", "0.8-1.3", fmt(s.get("fracture_energy_ratio"), 3)),
+             ("particles, steps", "-", f"{s.get('particles', 0):.0f}, {s.get('steps', 0):.0f}")],
+            s, cmd)
     if wanted("semicircular_bending"):
         rows_all, shown, summaries = [], [], []
         for angle in (0, 30, 60):

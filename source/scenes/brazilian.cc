@@ -183,6 +183,7 @@ public:
       writer.set_body(name, "Prescribed velocity/Function expression", expression, owner);
     }
     fracture_energy = fracture_energy_of(writer, writer.body(disc, entry("Disc")));
+    cell_size       = std::stod(writer.get("Grid/Cell size"));
   }
 
   void check(const SceneState<dim> &state) const override
@@ -279,7 +280,9 @@ public:
         bottom = std::min(bottom, p.reference_position[i][1]);
     const double area     = top > bottom ? (top - bottom + path.spacing) * length : 0.0;
     results["crack_area"] = area;
-    const auto dissipated = results.find("dissipated_energy");
+    // Whether the split is one plane (the loaded diameter's) or branches and caps.
+    results["crack_plane_deviation"] = crack_plane_deviation(p, d, cell_size);
+    const auto dissipated            = results.find("dissipated_energy");
     if (fracture_energy > 0 && area > 0 && dissipated != results.end())
       results["fracture_energy_ratio"] = dissipated->second / (fracture_energy * area);
   }
@@ -291,7 +294,7 @@ private:
   double gauge_radius() const { return 0.02 * diameter; }
 
   static std::string entry(const std::string &name) { return "Scene/brazilian/" + name; }
-  double cx = 0.1, cy = 0.1, fracture_energy = 0;
+  double cx = 0.1, cy = 0.1, fracture_energy = 0, cell_size = 0;
 };
 } // namespace scenes
 } // namespace lme_mpm

@@ -1,3 +1,5 @@
+#include <deal.II/base/symmetric_tensor.h>
+
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/scenes/scene_tools.h>
 
@@ -340,6 +342,35 @@ void add_crack_energy(const ParticleStore<dim> &particles, const unsigned int bo
 }
 
 template <int dim>
+double crack_plane_deviation(const ParticleStore<dim> &p, const unsigned int body,
+                             const double cell, const double threshold)
+{
+  // Centroid first, then the spread about it: one pass of raw moments would lose the
+  // digits of a spread far smaller than the distance from the origin.
+  Tensor<1, dim> centroid;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.body_id[i] == body && p.damage[i] >= threshold)
+      centroid += p.reference_position[i], ++n;
+  if (n < dim + 1)
+    return 0;
+  centroid /= double(n);
+  SymmetricTensor<2, dim> spread;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.body_id[i] == body && p.damage[i] >= threshold)
+    {
+      const Tensor<1, dim> r = p.reference_position[i] - centroid;
+      for (unsigned int a = 0; a < dim; ++a)
+        for (unsigned int b = a; b < dim; ++b)
+          spread[a][b] += r[a] * r[b];
+    }
+  spread /= double(n);
+  // The mean squared distance from the best plane is the least eigenvalue.
+  const double least = eigenvalues(spread)[dim - 1];
+  return std::sqrt(std::max(least, 0.0)) / cell;
+}
+
+template <int dim>
 double crack_tip_distance(const ParticleStore<dim> &p, const unsigned int body,
                           const double thickness, const Point<2> &origin,
                           const Tensor<1, 2> &direction, const double threshold)
@@ -497,6 +528,10 @@ template void add_crack_energy(const ParticleStore<2> &, unsigned int, double, d
                                std::map<std::string, double> &);
 template void add_crack_energy(const ParticleStore<3> &, unsigned int, double, double,
                                std::map<std::string, double> &);
+template double crack_plane_deviation(const ParticleStore<2> &, unsigned int, double,
+                                      double);
+template double crack_plane_deviation(const ParticleStore<3> &, unsigned int, double,
+                                      double);
 template double damaged_volume(const ParticleStore<2> &, unsigned int);
 template double damaged_volume(const ParticleStore<3> &, unsigned int);
 template unsigned int body_index(const SceneState<2> &, const std::string &,

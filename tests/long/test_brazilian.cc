@@ -118,3 +118,33 @@ TEST(Brazilian, DiscSplitsFromTheCentreAlongTheLoadedDiameterNearTheTensileStren
     }
   EXPECT_TRUE(found);
 }
+
+TEST(Brazilian, CylinderIn3DSplitsAtThePlaneStrainDiscsStrength)
+{
+  // prm/brazilian_3d.prm cut to two cells along its axis (11,504 particles) against the
+  // 2D disc with the same entries at the same cell size: the cylinder with free ends
+  // splits within 10 % of the plane-strain disc's strength (doc/brazilian.md, "The
+  // cylinder in 3D").
+  const auto cylinder = lme_mpm_test::run_scene(
+      "brazilian_3d.prm", "brazilian_3d",
+      {"Scene/brazilian/Length=0.01", "Grid/Upper corner=0.2, 0.2, 0.01",
+       "Output/Probe 1/Point=0.1, 0.1, 0.005", "Output/Write particle files=false"});
+  const auto disc = lme_mpm_test::run_scene(
+      "brazilian.prm", "brazilian_3d_reference",
+      {"Grid/Cell size=0.005", "Scene/brazilian/Strip width=0.025",
+       "Shape functions/Type=ugimp", "Scene/brazilian/Stop at load fraction=0.4",
+       "Time/End time=4e-3"});
+  const double ratio = cylinder.at("splitting_strength") / disc.at("splitting_strength");
+  std::cout << "3D cylinder over 2D disc: splitting strength " << ratio
+            << ", crack_plane_deviation " << cylinder.at("crack_plane_deviation")
+            << " cells (2D " << disc.at("crack_plane_deviation") << ")" << std::endl;
+  const auto summary = nlohmann::json::parse(lme_mpm_test::file_text(
+      lme_mpm_test::scratch_path("brazilian_3d") + "/summary.json"));
+  EXPECT_EQ(summary["stop_reason"], "scene");
+  EXPECT_NEAR(ratio, 1, 0.1);
+  EXPECT_NEAR(cylinder.at("splitting_strength"),
+              2 * cylinder.at("peak_force") / (M_PI * 0.15 * 0.01), 1e-9 * 5.4e6);
+  // Some particles have failed, and they lie within a cell of one plane.
+  EXPECT_GT(cylinder.at("crack_plane_deviation"), 0);
+  EXPECT_LE(cylinder.at("crack_plane_deviation"), 1);
+}

@@ -168,3 +168,43 @@ TEST(SceneTools, CrackBandMeasuresTheWidthAndTheEnergyOffTheCrack)
   const std::vector<Point<2>> line = {Point<2>(0.0105, 0), Point<2>(0.0105, 0.025)};
   EXPECT_NEAR(scenes::crack_band(p, 0, path, line).off_crack_share, 0, 1e-12);
 }
+
+TEST(SceneTools, CrackPlaneDeviationIsTheRmsDistanceFromTheBestPlane)
+{
+  // 2D: a crack two particle columns wide (x = 10.5 and 11.5 mm) lies 0.5 mm either
+  // side of its best line: 0.25 of a 2 mm cell.
+  ParticleStore<2> p = block();
+  EXPECT_EQ(scenes::crack_plane_deviation(p, 0, 0.002), 0);
+  damage_column(p, 0.0105, 0, 0.030);
+  damage_column(p, 0.0115, 0, 0.030);
+  EXPECT_NEAR(scenes::crack_plane_deviation(p, 0, 0.002), 0.25, 1e-12);
+  // Partly damaged particles, and failed ones of another body, are not the crack's.
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.reference_position[i][0] < 0.003)
+      p.damage[i] = 0.9;
+    else if (p.reference_position[i][0] > 0.017)
+      p.damage[i] = 1, p.body_id[i] = 1;
+  EXPECT_NEAR(scenes::crack_plane_deviation(p, 0, 0.002), 0.25, 1e-12);
+  // A branch off the crack reads more than the straight crack.
+  damage_column(p, 0.0045, 0.020, 0.030);
+  EXPECT_GT(scenes::crack_plane_deviation(p, 0, 0.002), 0.5);
+
+  // 3D: two layers of particles a = 0.3 mm either side of a plane turned out of every
+  // grid plane, far from the origin: the deviation is a over the cell, whatever the
+  // plane's size and place.
+  const double a = 3e-4;
+  Tensor<1, 3> n({1.0, 2.0, -2.0}), t1({2.0, -1.0, 0.0});
+  n /= n.norm(), t1 /= t1.norm();
+  const Tensor<1, 3> t2 = cross_product_3d(n, t1);
+  const Point<3> origin(5.0, -3.0, 7.0);
+  ParticleStore<3> q;
+  for (int i = -10; i <= 10; ++i)
+    for (int j = -6; j <= 6; ++j)
+      for (const double s : {-a, a})
+      {
+        const std::size_t k =
+            q.add(origin + 1e-3 * (i * t1 + 1.5 * j * t2) + s * n, 1.0, 1e-9, 0, 0);
+        q.damage[k] = 1;
+      }
+  EXPECT_NEAR(scenes::crack_plane_deviation(q, 0, 0.0025), a / 0.0025, 1e-9);
+}

@@ -156,6 +156,18 @@ template <int dim>
 void add_crack_energy(const ParticleStore<dim> &particles, unsigned int body,
                       double thickness, double G_F,
                       std::map<std::string, double> &results);
+/**
+ * How far the fully damaged particles of @p body (damage of at least @p threshold) lie
+ * from one plane (a line in 2D): the root mean square distance of their reference
+ * positions from the plane that fits them best in least squares, the plane through
+ * their centroid normal to the least principal direction of their spread, divided by
+ * @p cell. 0 with fewer than dim + 1 such particles. A crack one band wide and straight
+ * reads about the band's width over sqrt(12) cells; a branch or a second crack reads
+ * more.
+ */
+template <int dim>
+double crack_plane_deviation(const ParticleStore<dim> &particles, unsigned int body,
+                             double cell, double threshold = 0.99);
 /// The fracture energy of the material body @p body is made of (0 without fracture).
 double fracture_energy_of(const EntryWriter &writer, unsigned int body);
 /// The damaged volume of @p body: sum of damage times volume over its particles (m^3
