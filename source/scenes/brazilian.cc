@@ -183,7 +183,6 @@ public:
       writer.set_body(name, "Prescribed velocity/Function expression", expression, owner);
     }
     fracture_energy = fracture_energy_of(writer, writer.body(disc, entry("Disc")));
-    cell_size       = std::stod(writer.get("Grid/Cell size"));
   }
 
   void check(const SceneState<dim> &state) const override
@@ -280,9 +279,24 @@ public:
         bottom = std::min(bottom, p.reference_position[i][1]);
     const double area     = top > bottom ? (top - bottom + path.spacing) * length : 0.0;
     results["crack_area"] = area;
-    // Whether the split is one plane (the loaded diameter's) or branches and caps.
-    results["crack_plane_deviation"] = crack_plane_deviation(p, d, cell_size);
-    const auto dissipated            = results.find("dissipated_energy");
+    // Whether the split is one plane (the loaded diameter's) or branches and caps, in
+    // units of the cell at the disc's centre (the mean of its sides).
+    if (state.grid)
+    {
+      Point<dim> centre;
+      centre[0] = cx, centre[1] = cy;
+      if (dim == 3)
+        centre[dim - 1] = 0.5 * length;
+      std::array<unsigned int, dim> ijk;
+      if (state.grid->locate(centre, ijk))
+      {
+        double cell = 0;
+        for (unsigned int k = 0; k < dim; ++k)
+          cell += state.grid->spacing(k, ijk[k]) / dim;
+        results["crack_plane_deviation"] = crack_plane_deviation(p, d, cell);
+      }
+    }
+    const auto dissipated = results.find("dissipated_energy");
     if (fracture_energy > 0 && area > 0 && dissipated != results.end())
       results["fracture_energy_ratio"] = dissipated->second / (fracture_energy * area);
   }
@@ -294,7 +308,7 @@ private:
   double gauge_radius() const { return 0.02 * diameter; }
 
   static std::string entry(const std::string &name) { return "Scene/brazilian/" + name; }
-  double cx = 0.1, cy = 0.1, fracture_energy = 0, cell_size = 0;
+  double cx = 0.1, cy = 0.1, fracture_energy = 0;
 };
 } // namespace scenes
 } // namespace lme_mpm

@@ -161,6 +161,7 @@ SceneState<dim> RunOutput<dim>::scene_state(const double t,
   state.run         = &parts.parameters;
   state.constraints = &parts.constraints;
   state.gauges      = &parts.gauges;
+  state.grid        = &parts.grid;
   if (parts.contact_forces())
   {
     state.contact_forces      = &contact_means.current();

@@ -7,6 +7,7 @@
 #include <lme_mpm/base/rank_reductions.h>
 #include <lme_mpm/base/registry.h>
 #include <lme_mpm/boundary/node_constraints.h>
+#include <lme_mpm/grid/background_grid.h>
 #include <lme_mpm/output/gauges.h>
 #include <lme_mpm/particles/particle_store.h>
 #include <lme_mpm/solver/run_parameters.h>
@@ -132,7 +133,9 @@ struct SceneState
    * several ranks.
    */
   std::function<const ParticleStore<dim> &()> all_particles;
-  double time = 0;
+  /// The background grid (the whole of it, on every rank).
+  const BackgroundGrid<dim> *grid = nullptr;
+  double time                     = 0;
   /// The length of the step just taken (0 in a history row or at the end).
   double step_length = 0;
   /// Output/Force window (s): the span of the means scenes judge loads by.
