@@ -331,7 +331,7 @@ def main():
               fmt(s.get("splitting_strength", 0) / f_t)),
              ("splitting strength / the 2D plane-strain disc's (same cell size)",
               "within 10 %", fmt(s.get("splitting_strength", 0) /
-                                 s2.get("splitting_strength", float("nan")), 3)),
+                                 s2.get("splitting_strength", float("nan")), 4)),
              ("`crack_plane_deviation` (cells)", "at most 1",
               fmt(s.get("crack_plane_deviation"), 3)),
              ("`fracture_energy_ratio`", "0.8-1.3", fmt(s.get("fracture_energy_ratio"), 3)),
