@@ -347,17 +347,19 @@ double crack_plane_deviation(const ParticleStore<dim> &p, const unsigned int bod
 {
   // Centroid first, then the spread about it: one pass of raw moments would lose the
   // digits of a spread far smaller than the distance from the origin.
+  const auto failed = [&](const std::size_t i)
+  { return p.body_id[i] == body && p.damage[i] >= threshold; };
   Tensor<1, dim> centroid;
   std::size_t n = 0;
   for (std::size_t i = 0; i < p.size(); ++i)
-    if (p.body_id[i] == body && p.damage[i] >= threshold)
+    if (failed(i))
       centroid += p.reference_position[i], ++n;
   if (n < dim + 1)
     return 0;
   centroid /= double(n);
   SymmetricTensor<2, dim> spread;
   for (std::size_t i = 0; i < p.size(); ++i)
-    if (p.body_id[i] == body && p.damage[i] >= threshold)
+    if (failed(i))
     {
       const Tensor<1, dim> r = p.reference_position[i] - centroid;
       for (unsigned int a = 0; a < dim; ++a)
