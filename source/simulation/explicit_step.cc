@@ -1,6 +1,8 @@
 #include <lme_mpm/base/parallel.h>
 #include <lme_mpm/simulation/explicit_step.h>
 
+#include <sstream>
+
 namespace lme_mpm
 {
 template <int dim>
@@ -19,6 +21,7 @@ ExplicitStep<dim>::ExplicitStep(SimulationParts<dim> &parts, const RunGuard<dim>
   stage.to_particles        = timer.add("grid to particles");
   stage.contact             = timer.add("contact (bodies, crack faces)");
   stage.exchange            = timer.add("MPI: particle exchange");
+  stage.mass_solve          = timer.add("consistent mass solve");
 }
 
 template <int dim>
@@ -82,6 +85,40 @@ void ExplicitStep<dim>::impose_accelerations(std::vector<Tensor<1, dim>> &x,
 }
 
 template <int dim>
+template <class Constrain>
+void ExplicitStep<dim>::solve_mass(std::vector<Tensor<1, dim>> &x,
+                                   const std::vector<Tensor<1, dim>> &rhs,
+                                   const Constrain &constrain, const char *what,
+                                   const double t)
+{
+  const RunParameters<dim> &run = parts.parameters;
+  if (!run.consistent_mass)
+  {
+    if (run.mass_corrections > 0)
+      parts.transfer.correct_towards_consistent_mass(x, rhs, run.mass_corrections,
+                                                     min_mass, constrain);
+    return;
+  }
+  StageTimer::Scope scope(timer, stage.mass_solve);
+  const unsigned int it = parts.transfer.solve_consistent_mass(
+      x, rhs, run.consistent_mass_tolerance, run.consistent_mass_iterations, min_mass,
+      constrain);
+  if (it > run.consistent_mass_iterations)
+  {
+    std::ostringstream msg;
+    msg << "The consistent-mass solve of the " << what << " at time " << t
+        << " s did not reach 'Time/Consistent mass tolerance' = "
+        << run.consistent_mass_tolerance << " within 'Time/Consistent mass iterations' = "
+        << run.consistent_mass_iterations
+        << ": the consistent mass matrix is singular or nearly so where a body's field "
+           "has fewer particles than nodes (wide supports, few particles per cell); "
+           "use 'Time/Mass matrix = lumped' (with 'Mass matrix corrections'), more "
+           "particles per cell, or a looser tolerance";
+    throw ExcRunStopped(msg.str());
+  }
+}
+
+template <int dim>
 void ExplicitStep<dim>::initialise(const double t, const unsigned int step)
 {
   // The scheme starts from a^0 = M^-1 f(u^0): with a body force, an initial stress or
@@ -98,9 +135,7 @@ void ExplicitStep<dim>::initialise(const double t, const unsigned int step)
   const auto constrain = [&](std::vector<Tensor<1, dim>> &x)
   { impose_accelerations(x, t); };
   constrain(nodes.acceleration);
-  transfer.correct_towards_consistent_mass(nodes.acceleration, nodes.force,
-                                           parts.parameters.mass_corrections, min_mass,
-                                           constrain);
+  solve_mass(nodes.acceleration, nodes.force, constrain, "initial accelerations", t);
   // Bodies that start in contact (a block resting on a slab) do not accelerate into
   // each other (after the mass corrections, which would undo it).
   transfer.predict_rates(newmark, 0, min_mass);
@@ -180,14 +215,15 @@ void ExplicitStep<dim>::predict_rates(const double t_half)
     parts.crack_contact.on_rates(min_mass);
   }
   parts.constraints.impose_rates(nodes.rate, nodes.layout, t_half);
-  if (parts.parameters.mass_corrections > 0)
+  if (parts.parameters.mass_corrections > 0 || parts.parameters.consistent_mass)
   {
     nodes.for_active(
         [&](const unsigned int I)
         { nodes.rhs[I] = nodes.momentum[I] + (0.5 * dt) * nodes.mass_acceleration[I]; });
-    transfer.correct_towards_consistent_mass(
-        nodes.rate, nodes.rhs, parts.parameters.mass_corrections, min_mass,
-        [&](std::vector<Tensor<1, dim>> &x) { impose_rates(x, t_half); });
+    solve_mass(
+        nodes.rate, nodes.rhs,
+        [&](std::vector<Tensor<1, dim>> &x) { impose_rates(x, t_half); },
+        "rates (predictor)", t_half);
   }
   // Contact between bodies last: constraints still win on their nodes.
   {
@@ -266,17 +302,18 @@ ExplicitStep<dim>::correct_accelerations(const double t_new)
   const auto constrain = [&](std::vector<Tensor<1, dim>> &x)
   { parts.constraints.impose_accelerations(x, nodes.layout, t_new, derivative_step()); };
   constrain(nodes.acceleration);
-  if (parts.parameters.mass_corrections > 0)
-    transfer.correct_towards_consistent_mass(
-        nodes.acceleration, nodes.force, parts.parameters.mass_corrections, min_mass,
-        [&](std::vector<Tensor<1, dim>> &x) { impose_accelerations(x, t_new); });
+  solve_mass(
+      nodes.acceleration, nodes.force,
+      [&](std::vector<Tensor<1, dim>> &x) { impose_accelerations(x, t_new); },
+      "accelerations (corrector)", t_new);
   {
     StageTimer::Scope contact_scope(timer, stage.contact);
     result.contact_work = parts.contact.on_accelerations(newmark, dt);
   }
   if (parts.contact.n_contact_pairs() > 0)
     constrain(nodes.acceleration);
-  if (parts.parameters.mass_corrections == 0 || parts.constraints.empty())
+  if ((parts.parameters.mass_corrections == 0 && !parts.parameters.consistent_mass) ||
+      parts.constraints.empty())
     return result;
   // The reaction is what the constraint adds to the force: M a - f on its nodes.
   transfer.apply_consistent_mass(nodes.acceleration, nodes.rhs);

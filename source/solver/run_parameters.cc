@@ -83,6 +83,22 @@ void RunParameters<dim>::entries(EntryList &list)
            "the lumped mass of standard MPM and of the paper; 1-2 remove most of "
            "the lumping's phase error, which grows with the support width "
            "(doc/shape_functions.md).");
+  list.add("Mass matrix", mass_matrix, "lumped", Patterns::Selection("lumped|consistent"),
+           "The mass matrix of the grid's two solves per step. 'lumped' (the paper's, "
+           "with 'Mass matrix corrections' Jacobi corrections towards the consistent "
+           "one); 'consistent': M_C = sum_p m_p N_Ip N_Jp of each body's field, solved "
+           "by conjugate gradients preconditioned with the lumped mass, from the lumped "
+           "solution, to 'Consistent mass tolerance' (each iteration costs two grid "
+           "transfers; one MPI rank; doc/shape_functions.md).");
+  list.add("Consistent mass tolerance", consistent_mass_tolerance, "1e-10",
+           Patterns::Double(0),
+           "Mass matrix = consistent: the solve stops when the residual's norm weighted "
+           "by the inverse lumped mass falls below this fraction of the right-hand "
+           "side's, in (0, 0.1).");
+  list.add("Consistent mass iterations", consistent_mass_iterations, "1000",
+           Patterns::Integer(1, 10000),
+           "Mass matrix = consistent: the most iterations a solve may take; a solve "
+           "that has not reached its tolerance by then stops the run.");
   list.add("Newmark gamma", newmark_gamma, "0.5", Patterns::Double(0.5, 1),
            "Newmark gamma in [0.5, 1]: 0.5 conserves energy (second order), "
            "larger values damp high frequencies (first order).");
@@ -197,7 +213,18 @@ void RunParameters<dim>::parse_parameters(ParameterHandler &prm)
     body_force[d] = g[d];
   input::require_range(body_force_ramp, 0, 1e300, false, "Problem/Body force ramp time");
   input::require_range(end_time, 0, 1e300, true, "Time/End time");
-  xpic_order = particle_update == "xpic" ? xpic_order_entry : 0;
+  xpic_order      = particle_update == "xpic" ? xpic_order_entry : 0;
+  consistent_mass = mass_matrix == "consistent";
+  if (consistent_mass)
+  {
+    input::require_range(consistent_mass_tolerance, 0, 0.1, true,
+                         "Time/Consistent mass tolerance");
+    AssertThrow(mass_corrections == 0,
+                ExcBadInput("Time/Mass matrix corrections",
+                            "must be 0 with 'Time/Mass matrix = consistent' (the "
+                            "corrections approach the consistent mass; the solve "
+                            "reaches it)"));
+  }
 }
 
 template <int dim>

@@ -114,8 +114,14 @@ private:
   struct StageIds
   {
     unsigned int crack_growth, locate, to_grid, rates, stresses_and_forces, stresses,
-        fracture, forces, accelerations, to_particles, contact, exchange;
+        fracture, forces, accelerations, to_particles, contact, exchange, mass_solve;
   } stage{};
+  /// M x = rhs with the run's mass matrix: the lumped solution in x is corrected (the
+  /// Jacobi corrections) or replaced by the consistent one; stops the run if that
+  /// solve does not converge (@p what and @p t name it).
+  template <class Constrain>
+  void solve_mass(std::vector<Tensor<1, dim>> &x, const std::vector<Tensor<1, dim>> &rhs,
+                  const Constrain &constrain, const char *what, double t);
 };
 } // namespace lme_mpm
 

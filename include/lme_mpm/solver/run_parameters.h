@@ -55,6 +55,11 @@ struct RunParameters
   // Time
   double end_time = 1, cfl = 0.3, fixed_time_step = 0, max_cfl = 1, newmark_gamma = 0.5;
   unsigned int mass_corrections = 0, max_steps = 0;
+  /// The grid's mass matrix: the lumped one (with mass_corrections Jacobi
+  /// corrections), or the consistent one solved to consistent_mass_tolerance.
+  bool consistent_mass                    = false;
+  double consistent_mass_tolerance        = 1e-10;
+  unsigned int consistent_mass_iterations = 1000;
   /// Largest particle travel per step, in smallest cells (0: no limit).
   double particle_travel = 0;
   /// The particle update: 0 FLIP, m > 0 XPIC(m).
@@ -81,7 +86,7 @@ struct RunParameters
 
 private:
   void entries(EntryList &list);
-  std::string plane_assumption, body_force_text, particle_update;
+  std::string plane_assumption, body_force_text, particle_update, mass_matrix;
   unsigned int xpic_order_entry = 2;
 };
 
