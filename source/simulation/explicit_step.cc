@@ -1,7 +1,7 @@
 #include <lme_mpm/base/parallel.h>
 #include <lme_mpm/simulation/explicit_step.h>
 
-#include <sstream>
+#include <optional>
 
 namespace lme_mpm
 {
@@ -85,37 +85,18 @@ void ExplicitStep<dim>::impose_accelerations(std::vector<Tensor<1, dim>> &x,
 }
 
 template <int dim>
-template <class Constrain>
 void ExplicitStep<dim>::solve_mass(std::vector<Tensor<1, dim>> &x,
                                    const std::vector<Tensor<1, dim>> &rhs,
-                                   const Constrain &constrain, const char *what,
-                                   const double t)
+                                   const typename MassSolve<dim>::Constrain &constrain,
+                                   const char *what, const double t)
 {
-  const RunParameters<dim> &run = parts.parameters;
-  if (!run.consistent_mass)
-  {
-    if (run.mass_corrections > 0)
-      parts.transfer.correct_towards_consistent_mass(x, rhs, run.mass_corrections,
-                                                     min_mass, constrain);
+  if (!parts.mass.active())
     return;
-  }
-  StageTimer::Scope scope(timer, stage.mass_solve);
-  const unsigned int it = parts.transfer.solve_consistent_mass(
-      x, rhs, run.consistent_mass_tolerance, run.consistent_mass_iterations, min_mass,
-      constrain);
-  if (it > run.consistent_mass_iterations)
-  {
-    std::ostringstream msg;
-    msg << "The consistent-mass solve of the " << what << " at time " << t
-        << " s did not reach 'Time/Consistent mass tolerance' = "
-        << run.consistent_mass_tolerance << " within 'Time/Consistent mass iterations' = "
-        << run.consistent_mass_iterations
-        << ": the consistent mass matrix is singular or nearly so where a body's field "
-           "has fewer particles than nodes (wide supports, few particles per cell); "
-           "use 'Time/Mass matrix = lumped' (with 'Mass matrix corrections'), more "
-           "particles per cell, or a looser tolerance";
-    throw ExcRunStopped(msg.str());
-  }
+  // The corrections stay in their caller's stage; the solve has its own.
+  std::optional<StageTimer::Scope> scope;
+  if (parts.mass.consistent())
+    scope.emplace(timer, stage.mass_solve);
+  parts.mass.solve(parts.transfer, x, rhs, min_mass, constrain, what, t);
 }
 
 template <int dim>
@@ -215,7 +196,7 @@ void ExplicitStep<dim>::predict_rates(const double t_half)
     parts.crack_contact.on_rates(min_mass);
   }
   parts.constraints.impose_rates(nodes.rate, nodes.layout, t_half);
-  if (parts.parameters.mass_corrections > 0 || parts.parameters.consistent_mass)
+  if (parts.mass.active())
   {
     nodes.for_active(
         [&](const unsigned int I)
@@ -312,8 +293,7 @@ ExplicitStep<dim>::correct_accelerations(const double t_new)
   }
   if (parts.contact.n_contact_pairs() > 0)
     constrain(nodes.acceleration);
-  if ((parts.parameters.mass_corrections == 0 && !parts.parameters.consistent_mass) ||
-      parts.constraints.empty())
+  if (!parts.mass.active() || parts.constraints.empty())
     return result;
   // The reaction is what the constraint adds to the force: M a - f on its nodes.
   transfer.apply_consistent_mass(nodes.acceleration, nodes.rhs);

@@ -82,43 +82,19 @@ void RunOutput<dim>::add_columns()
        {
          p.gauges.write_header(out);
          p.control.write_header(out);
+         p.mass.write_header(out);
        },
        [&p](std::ostream &out, const ParticleStore<dim> &all, double)
        {
          p.gauges.write_row(out, all);
          p.control.write_row(out);
+         p.mass.write_row(out);
        },
        [this](std::map<std::string, double> &r, const ParticleStore<dim> &, double)
        {
          parts.control.add_results(r);
+         parts.mass.add_results(r);
          load_test.add_results(r);
-       }});
-  // Consistent-mass runs only (the entries are read after this constructor).
-  columns.push_back(
-      {[&p](std::ostream &out)
-       {
-         if (p.parameters.consistent_mass)
-           out << ",mass_solve_iterations";
-       },
-       [this](std::ostream &out, const ParticleStore<dim> &, double)
-       {
-         if (!parts.parameters.consistent_mass)
-           return;
-         // The mean iterations of the solves since the last row.
-         const auto &c            = parts.transfer.mass_solve_counts();
-         const std::size_t solves = c.solves - row_mass_solves.first,
-                           its    = c.iterations - row_mass_solves.second;
-         out << "," << (solves > 0 ? double(its) / solves : 0.0);
-         row_mass_solves = {c.solves, c.iterations};
-       },
-       [this](std::map<std::string, double> &r, const ParticleStore<dim> &, double)
-       {
-         if (!parts.parameters.consistent_mass)
-           return;
-         const auto &c = parts.transfer.mass_solve_counts();
-         r["mass_solve_mean_iterations"] =
-             c.solves > 0 ? double(c.iterations) / c.solves : 0.0;
-         r["mass_solve_max_iterations"] = c.most;
        }});
   columns.push_back({[this](std::ostream &out) { probes.write_header(out); },
                      [this](std::ostream &out, const ParticleStore<dim> &all, double)

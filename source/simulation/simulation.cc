@@ -213,12 +213,7 @@ void Simulation<dim>::distribute()
   parts.rigid.set_ranks(parts.ranks);
   if (!parts.ranks.distributed())
     return;
-  AssertThrow(!parts.parameters.consistent_mass,
-              ExcBadInput("Time/Mass matrix",
-                          "'consistent' runs on one MPI rank (each rank's halo holds "
-                          "what a fixed number of grid transfers reads, and a solve to a "
-                          "tolerance reaches the whole grid); use 'lumped' with 'Mass "
-                          "matrix corrections' on several ranks"));
+  parts.mass.require_one_rank();
   // The halo holds what one step of an owned particle reads (halo_reach.h).
   const HaloReach reach =
       halo_reach(parts.grid, *parts.shape_function, parts.fracture, parts.contact,

@@ -43,30 +43,8 @@ void ParameterCounts::parse_parameters(ParameterHandler &prm)
 }
 
 template <int dim>
-void RunParameters<dim>::entries(EntryList &list)
+void RunParameters<dim>::time_entries(EntryList &list)
 {
-  list.enter("Problem");
-  list.add("Thickness", thickness, "1", Patterns::Double(0),
-           "Out-of-plane thickness of a 2D specimen (m); masses, forces and "
-           "energies are those of the specimen. Ignored in 3D.");
-  list.add("Plane assumption", plane_assumption, "plane strain",
-           Patterns::Selection("plane strain|plane stress"),
-           "How a 2D model treats the out-of-plane direction.");
-  list.add("Units", units, "SI", Patterns::Selection("SI|unitless"),
-           "The units of the file's numbers. 'SI': a material entry outside the "
-           "range physical for solids (Young's modulus 1e3 to 1e13 Pa, density 1 to "
-           "1e5 kg/m^3) is named in a warning. 'unitless': a scaled problem (the "
-           "mode-I panel), whose values no range applies to.");
-  list.add("Body force", body_force_text, "0, 0, 0", Patterns::Anything(),
-           "Body force per unit mass (m/s^2), dim components (extra ones "
-           "ignored), for example '0, -9.81'.");
-  list.add("Body force ramp time", body_force_ramp, "0", Patterns::Double(0),
-           "The body force grows linearly from zero to its full value over this "
-           "time (s): a load applied over many periods of the specimen's slowest "
-           "vibration starts it quasi-statically, where a sudden one sets it ringing. "
-           "0: in full from the start.");
-  list.leave();
-
   list.enter("Time");
   list.add("End time", end_time, "1", Patterns::Double(0), "Simulated time (s), > 0.");
   list.add("CFL", cfl, "0.3", Patterns::Double(0),
@@ -125,6 +103,34 @@ void RunParameters<dim>::entries(EntryList &list)
            "set-up; such a run ends with status 'stopped' (stop_reason 'Time/Maximum "
            "steps') and exit code 0.");
   list.leave();
+}
+
+template <int dim>
+void RunParameters<dim>::entries(EntryList &list)
+{
+  list.enter("Problem");
+  list.add("Thickness", thickness, "1", Patterns::Double(0),
+           "Out-of-plane thickness of a 2D specimen (m); masses, forces and "
+           "energies are those of the specimen. Ignored in 3D.");
+  list.add("Plane assumption", plane_assumption, "plane strain",
+           Patterns::Selection("plane strain|plane stress"),
+           "How a 2D model treats the out-of-plane direction.");
+  list.add("Units", units, "SI", Patterns::Selection("SI|unitless"),
+           "The units of the file's numbers. 'SI': a material entry outside the "
+           "range physical for solids (Young's modulus 1e3 to 1e13 Pa, density 1 to "
+           "1e5 kg/m^3) is named in a warning. 'unitless': a scaled problem (the "
+           "mode-I panel), whose values no range applies to.");
+  list.add("Body force", body_force_text, "0, 0, 0", Patterns::Anything(),
+           "Body force per unit mass (m/s^2), dim components (extra ones "
+           "ignored), for example '0, -9.81'.");
+  list.add("Body force ramp time", body_force_ramp, "0", Patterns::Double(0),
+           "The body force grows linearly from zero to its full value over this "
+           "time (s): a load applied over many periods of the specimen's slowest "
+           "vibration starts it quasi-statically, where a sudden one sets it ringing. "
+           "0: in full from the start.");
+  list.leave();
+
+  time_entries(list);
 
   list.enter("Output");
   list.add("Directory", directory, "output", Patterns::Anything(),

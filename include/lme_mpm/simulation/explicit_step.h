@@ -116,12 +116,11 @@ private:
     unsigned int crack_growth, locate, to_grid, rates, stresses_and_forces, stresses,
         fracture, forces, accelerations, to_particles, contact, exchange, mass_solve;
   } stage{};
-  /// M x = rhs with the run's mass matrix: the lumped solution in x is corrected (the
-  /// Jacobi corrections) or replaced by the consistent one; stops the run if that
-  /// solve does not converge (@p what and @p t name it).
-  template <class Constrain>
+  /// The run's mass solve (MassSolve) on the lumped solution in @p x, timed in its
+  /// own stage when it solves M_C.
   void solve_mass(std::vector<Tensor<1, dim>> &x, const std::vector<Tensor<1, dim>> &rhs,
-                  const Constrain &constrain, const char *what, double t);
+                  const typename MassSolve<dim>::Constrain &constrain, const char *what,
+                  double t);
 };
 } // namespace lme_mpm
 

@@ -16,6 +16,7 @@
 #include <lme_mpm/scenes/scene.h>
 #include <lme_mpm/shape_functions/shape_function.h>
 #include <lme_mpm/solver/grid_transfer.h>
+#include <lme_mpm/solver/mass_solve.h>
 #include <lme_mpm/solver/run_parameters.h>
 
 #include <memory>
@@ -34,7 +35,7 @@ struct SimulationParts
 {
   SimulationParts()
       : transfer(grid, particles), crack_contact(cracks, transfer, particles),
-        contact(grid, transfer, particles, bodies)
+        contact(grid, transfer, particles, bodies), mass(parameters)
   {
   }
   SimulationParts(const SimulationParts &) = delete;
@@ -58,6 +59,7 @@ struct SimulationParts
   RigidSurfaces<dim> rigid;
   OpeningGauges<dim> gauges;
   LoadingControl<dim> control;
+  MassSolve<dim> mass;
 
   /// True if bodies receive contact forces (multi-field contact or rigid surfaces).
   bool contact_forces() const { return contact.active() || rigid.active(); }

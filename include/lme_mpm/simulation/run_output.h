@@ -166,8 +166,6 @@ private:
 
   const SimulationParts<dim> &parts;
   const StageTimer &stages;
-  /// The consistent-mass solves and their iterations at the last history row.
-  std::pair<std::size_t, std::size_t> row_mass_solves{0, 0};
   ConditionalOStream pcout;
   std::string output_directory;
   std::vector<Columns> columns;

@@ -174,104 +174,6 @@ public:
     }
   }
 
-  /**
-   * Solves M_C x = rhs with the consistent mass matrix by conjugate gradients
-   * preconditioned with the lumped mass, from x (the lumped solution, constraints
-   * imposed), on the active fields with more than @p mass_tolerance mass; the other
-   * fields and the components that @p constrain sets keep their values. @p constrain
-   * must set values that do not depend on the rest of its argument, or project it
-   * affinely (as the constraints and prescribed bodies do): the search directions
-   * are kept off those components by constrain(v) - constrain(0). Stops when
-   * |r|_{M_L^-1} <= tolerance |rhs|_{M_L^-1} (free components) and returns the
-   * iterations taken, or max_iterations + 1 if the tolerance was not reached then.
-   * The sums run over the active fields in order: the result does not depend on the
-   * thread count.
-   */
-  template <class Constrain>
-  unsigned int
-  solve_consistent_mass(std::vector<Tensor<1, dim>> &x,
-                        const std::vector<Tensor<1, dim>> &rhs, const double tolerance,
-                        const unsigned int max_iterations, const double mass_tolerance,
-                        const Constrain &constrain)
-  {
-    const std::size_t n = x.size();
-    for (auto *v : {&cg_r, &cg_z, &cg_p, &cg_g})
-      if (v->size() < n)
-        v->resize(n);
-    const std::vector<unsigned int> &active = fields.active;
-    const std::vector<double> &mass         = fields.mass;
-    // What the constraints write on a zero vector: their own values.
-    for (const unsigned int I : active)
-      cg_g[I] = Tensor<1, dim>();
-    constrain(cg_g);
-    const auto project = [&](std::vector<Tensor<1, dim>> &v)
-    {
-      constrain(v);
-      for (const unsigned int I : active)
-        v[I] = mass[I] > mass_tolerance ? v[I] - cg_g[I] : Tensor<1, dim>();
-    };
-    std::vector<Tensor<1, dim>> &q = fields.scratch;
-    double b2                      = 0;
-    for (const unsigned int I : active)
-      cg_p[I] = rhs[I];
-    project(cg_p);
-    for (const unsigned int I : active)
-      if (mass[I] > mass_tolerance)
-        b2 += cg_p[I] * cg_p[I] / mass[I];
-    apply_consistent_mass(x, q);
-    for (const unsigned int I : active)
-      cg_r[I] = rhs[I] - q[I];
-    project(cg_r);
-    double rz = 0;
-    for (const unsigned int I : active)
-    {
-      cg_z[I] = mass[I] > mass_tolerance ? cg_r[I] / mass[I] : Tensor<1, dim>();
-      cg_p[I] = cg_z[I];
-      rz += cg_r[I] * cg_z[I];
-    }
-    const double goal = tolerance * tolerance * b2;
-    unsigned int it   = 0;
-    while (rz > goal)
-    {
-      if (it == max_iterations)
-        return max_iterations + 1;
-      apply_consistent_mass(cg_p, q);
-      project(q);
-      double pq = 0;
-      for (const unsigned int I : active)
-        pq += cg_p[I] * q[I];
-      // M_C is only semi-definite where a field has fewer particles than nodes.
-      if (!(pq > 0))
-        return max_iterations + 1;
-      const double alpha = rz / pq;
-      double rz_new      = 0;
-      for (const unsigned int I : active)
-      {
-        x[I] += alpha * cg_p[I];
-        cg_r[I] -= alpha * q[I];
-        cg_z[I] = mass[I] > mass_tolerance ? cg_r[I] / mass[I] : Tensor<1, dim>();
-        rz_new += cg_r[I] * cg_z[I];
-      }
-      const double beta = rz_new / rz;
-      for (const unsigned int I : active)
-        cg_p[I] = cg_z[I] + beta * cg_p[I];
-      rz = rz_new;
-      ++it;
-    }
-    ++mass_solves.solves;
-    mass_solves.iterations += it;
-    mass_solves.most = std::max(mass_solves.most, it);
-    return it;
-  }
-
-  /// The consistent-mass solves so far: how many, their iterations, the most in one.
-  struct MassSolveCounts
-  {
-    std::size_t solves = 0, iterations = 0;
-    unsigned int most = 0;
-  };
-  const MassSolveCounts &mass_solve_counts() const { return mass_solves; }
-
   /// Calls f(p) for every particle in the scatter's order (see the class).
   template <class F>
   void scatter(const F &f) const
@@ -362,10 +264,6 @@ private:
   std::vector<std::uint8_t> prescribed_body;
   /// Per particle: scratch of the consistent-mass product.
   std::vector<Tensor<1, dim>> particle_scratch;
-  /// The consistent-mass solve's residual, preconditioned residual, direction and
-  /// the constraints' own values.
-  std::vector<Tensor<1, dim>> cg_r, cg_z, cg_p, cg_g;
-  MassSolveCounts mass_solves;
   /// XPIC: its order (0: FLIP), the nodal start velocity v* and a term of its series.
   unsigned int xpic_order = 0;
   std::vector<Tensor<1, dim>> start_velocity, term;

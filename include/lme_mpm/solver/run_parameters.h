@@ -86,6 +86,8 @@ struct RunParameters
 
 private:
   void entries(EntryList &list);
+  /// The entries of the Time subsection.
+  void time_entries(EntryList &list);
   std::string plane_assumption, body_force_text, particle_update, mass_matrix;
   unsigned int xpic_order_entry = 2;
 };
