@@ -13,6 +13,14 @@ particle travel limit and the particle update varied, and at v0/c from 1e-3 to 0
 with CFL 0.3, and writes stability_speed.csv and, with --plot,
 doc/figures/stability_speed.png (about 16 minutes on two threads).
 
+    /usr/bin/python3 benchmarks/stability_study.py --studies mass_speed --threads 2
+
+The mass-speed study runs the same bar at v0/c = 0.1 with the lumped mass, two
+corrections and the consistent mass (doc/stability.md), linear functions at CFL 0.3
+with and without the travel limit and cubic B-splines at CFL 0.1 (0.01 cells per step,
+the limit's own value), and writes stability_mass_speed.csv (about 10 minutes on two
+threads).
+
 A run counts as stable when it completes (no guard fired) with total energy within
 10 % of its initial value.
 """
@@ -48,6 +56,13 @@ def main():
     a = p.parse_args()
     if "speed" in a.studies:
         speed_study(a)
+        return
+    if "mass_speed" in a.studies:
+        cases = []
+        for mass in MASS:
+            cases += [("linear", 0.1, 0.3, "flip", travel, mass) for travel in [0, 0.01]]
+            cases.append(("bspline", 0.1, 0.1, "flip", 0, mass))
+        speed_study(a, cases, "stability_mass_speed.csv")
         return
     binary = os.path.join(a.build, "lme-mpm")
     os.makedirs(a.out, exist_ok=True)
@@ -117,8 +132,13 @@ def energy_extremes(out):
     return max(e) / e[0], e[-1] / e[0]
 
 
-def speed_study(a):
-    """Energy of the vibrating bar against particle speed, CFL, travel limit and update."""
+MASS = {"K=2 (file)": [], "lumped": ["Time/Mass matrix corrections=0"],
+        "consistent": ["Time/Mass matrix corrections=0", "Time/Mass matrix=consistent"]}
+
+
+def speed_study(a, cases=None, name="stability_speed.csv"):
+    """Energy of the vibrating bar against particle speed, CFL, travel limit, update and
+    mass treatment (cases: shape, v0/c, CFL, update, travel limit, mass)."""
     binary = os.path.join(a.build, "lme-mpm")
     os.makedirs(a.out, exist_ok=True)
     c, beta = 316.22776601683796, "1.5707963267948966"
@@ -126,15 +146,17 @@ def speed_study(a):
     # At v0/c = 0.1 every shape function with FLIP at three CFL numbers (no travel
     # limit), XPIC(2) at CFL 0.3, and the travel limit 0.01 at CFL 0.3; below 0.1 the
     # speed axis at CFL 0.3 with FLIP.
-    cases = []
-    for shape in ["linear", "ugimp", "bspline", "lme"]:
-        cfls = [0.3, 0.1] if shape == "lme" else [0.3, 0.1, 0.03]
-        cases += [(shape, 0.1, cfl, "flip", 0) for cfl in cfls]
-        cases += [(shape, 0.1, 0.3, "xpic", 0), (shape, 0.1, 0.3, "flip", 0.01)]
-    for shape in ["linear", "bspline"]:
-        cases += [(shape, vc, 0.3, "flip", 0) for vc in [1e-3, 1e-2, 3e-2]]
+    if cases is None:
+        cases = []
+        for shape in ["linear", "ugimp", "bspline", "lme"]:
+            cfls = [0.3, 0.1] if shape == "lme" else [0.3, 0.1, 0.03]
+            cases += [(shape, 0.1, cfl, "flip", 0, "K=2 (file)") for cfl in cfls]
+            cases += [(shape, 0.1, 0.3, "xpic", 0, "K=2 (file)"),
+                      (shape, 0.1, 0.3, "flip", 0.01, "K=2 (file)")]
+        for shape in ["linear", "bspline"]:
+            cases += [(shape, vc, 0.3, "flip", 0, "K=2 (file)") for vc in [1e-3, 1e-2, 3e-2]]
     rows = []
-    for shape, vc, cfl, update, travel in cases:
+    for shape, vc, cfl, update, travel, mass in cases:
         out = os.path.join(a.out, "run")
         if os.path.exists(os.path.join(out, "summary.json")):
             os.remove(os.path.join(out, "summary.json"))
@@ -144,8 +166,8 @@ def speed_study(a):
                     "Time/Particle travel per step=%g" % travel,
                     "Verification/Compare with exact solution=false",
                     "Body 1/Initial velocity/Function constants=v0=%.12g, beta=%s" % (vc * c, beta)]
-        s = run(binary, "prm/vibrating_bar.prm", out, settings, a.threads)
-        row = {"shape": shape, "v_over_c": vc, "cfl": cfl, "update": update,
+        s = run(binary, "prm/vibrating_bar.prm", out, settings + MASS[mass], a.threads)
+        row = {"shape": shape, "v_over_c": vc, "cfl": cfl, "update": update, "mass": mass,
                "travel_limit": travel, "status": s.get("status"),
                "steps": s.get("steps", ""),
                "largest_travel_per_step": min(cfl * vc, travel) if travel > 0 else cfl * vc,
@@ -157,11 +179,11 @@ def speed_study(a):
             row["max_total_over_initial"] = row["final_total_over_initial"] = ""
         rows.append(row)
         print(row, flush=True)
-    with open(os.path.join(a.out, "stability_speed.csv"), "w", newline="") as f:
+    with open(os.path.join(a.out, name), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         w.writeheader()
         w.writerows(rows)
-    if a.plot:
+    if a.plot and name == "stability_speed.csv":
         plot_speed(rows, "doc/figures/stability_speed.png")
 
 

@@ -181,6 +181,12 @@ void ExplicitStep<dim>::particles_to_grid()
                               b, e, touched);
         parts.contact.separate(parts.transfer.connectivity(), b, e);
       });
+  if (parts.mass.consistent())
+  {
+    // Both solves of the step use this connectivity.
+    StageTimer::Scope mass_scope(timer, stage.mass_solve);
+    parts.mass.assemble(parts.transfer, parts.particles);
+  }
 }
 
 template <int dim>

@@ -211,9 +211,9 @@ void Simulation<dim>::distribute()
   parts.constraints.set_ranks(parts.ranks);
   parts.contact.set_ranks(parts.ranks);
   parts.rigid.set_ranks(parts.ranks);
+  parts.mass.set_ranks(parts.ranks, parts.ranks.communicator());
   if (!parts.ranks.distributed())
     return;
-  parts.mass.require_one_rank();
   // The halo holds what one step of an owned particle reads (halo_reach.h).
   const HaloReach reach =
       halo_reach(parts.grid, *parts.shape_function, parts.fracture, parts.contact,

@@ -1,20 +1,20 @@
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/solver/mass_solve.h>
 
+#include <deal.II/base/symmetric_tensor.h>
+
 #include <algorithm>
 #include <sstream>
 
 namespace lme_mpm
 {
 template <int dim>
-void MassSolve<dim>::require_one_rank() const
+void MassSolve<dim>::assemble(const GridTransfer<dim> &transfer,
+                              const ParticleStore<dim> &particles)
 {
-  AssertThrow(!run.consistent_mass,
-              ExcBadInput("Time/Mass matrix",
-                          "'consistent' runs on one MPI rank (each rank's halo holds "
-                          "what a fixed number of grid transfers reads, and a solve to a "
-                          "tolerance reaches the whole grid); use 'lumped' with 'Mass "
-                          "matrix corrections' on several ranks"));
+  if (run.consistent_mass)
+    matrix.assemble(transfer.connectivity(), particles.mass, transfer.nodes().layout,
+                    transfer.nodes().active);
 }
 
 template <int dim>
@@ -31,7 +31,7 @@ void MassSolve<dim>::solve(GridTransfer<dim> &transfer, std::vector<Tensor<1, di
     return;
   }
   const unsigned int it =
-      conjugate_gradients(transfer, x, rhs, mass_tolerance, constrain);
+      conjugate_gradients(transfer.nodes(), x, rhs, mass_tolerance, constrain);
   if (it > run.consistent_mass_iterations)
   {
     std::ostringstream msg;
@@ -45,83 +45,160 @@ void MassSolve<dim>::solve(GridTransfer<dim> &transfer, std::vector<Tensor<1, di
            "particles per cell, or a looser tolerance";
     AssertThrow(false, ExcMessage(msg.str()));
   }
+  matrix.distribute(x);
   ++solves;
   iterations += it;
   most = std::max(most, it);
 }
 
 template <int dim>
-unsigned int MassSolve<dim>::conjugate_gradients(GridTransfer<dim> &transfer,
+void MassSolve<dim>::read_constraints(const NodalFields<dim> &fields,
+                                      const double mass_tolerance,
+                                      const Constrain &constrain)
+{
+  const std::vector<unsigned int> &active = fields.active;
+  const std::vector<unsigned int> &rows   = matrix.rows();
+  const std::vector<double> &mass         = fields.mass;
+  // The constraints' own values: what they write on a zero vector. A vector less
+  // them is what their linear part makes of it (zero on a fixed component, the
+  // tangential part on a slip plane), so the residuals and directions stay off the
+  // constrained components. That part is read node by node once per solve, from
+  // what the constraints make of the unit vectors: evaluating the constraints'
+  // functions in every iteration would cost more than the products.
+  for (const unsigned int I : active)
+    g[I] = Tensor<1, dim>();
+  constrain(g);
+  projected.clear();
+  {
+    std::vector<Tensor<2, dim>> A(rows.size());
+    for (unsigned int d = 0; d < dim; ++d)
+    {
+      for (const unsigned int I : active)
+        q[I] = Tensor<1, dim>(), q[I][d] = 1;
+      constrain(q);
+      for (std::size_t k = 0; k < rows.size(); ++k)
+        for (unsigned int e = 0; e < dim; ++e)
+          A[k][e][d] = q[rows[k]][e] - g[rows[k]][e];
+    }
+    const Tensor<2, dim> identity(unit_symmetric_tensor<dim>());
+    for (std::size_t k = 0; k < rows.size(); ++k)
+    {
+      const unsigned int I = rows[k];
+      if (!(mass[I] > mass_tolerance))
+        projected.emplace_back(I, Tensor<2, dim>());
+      else if (A[k] != identity)
+        projected.emplace_back(I, A[k]);
+    }
+  }
+}
+
+template <int dim>
+unsigned int MassSolve<dim>::conjugate_gradients(const NodalFields<dim> &fields,
                                                  std::vector<Tensor<1, dim>> &x,
                                                  const std::vector<Tensor<1, dim>> &rhs,
                                                  const double mass_tolerance,
                                                  const Constrain &constrain)
 {
-  const NodalFields<dim> &fields          = transfer.nodes();
-  const std::vector<unsigned int> &active = fields.active;
-  const std::vector<double> &mass         = fields.mass;
+  const std::vector<unsigned int> &rows = matrix.rows();
+  const std::vector<double> &mass       = fields.mass;
   for (auto *v : {&r, &z, &p, &q, &g})
     if (v->size() < x.size())
       v->resize(x.size());
-  // The constraints' own values: what they write on a zero vector. A vector less
-  // them is zero on the constrained components and unchanged elsewhere, so the
-  // residuals and directions stay off those components (and off light nodes).
-  for (const unsigned int I : active)
-    g[I] = Tensor<1, dim>();
-  constrain(g);
+  read_constraints(fields, mass_tolerance, constrain);
   const auto project = [&](std::vector<Tensor<1, dim>> &v)
   {
-    constrain(v);
-    for (const unsigned int I : active)
-      v[I] = mass[I] > mass_tolerance ? v[I] - g[I] : Tensor<1, dim>();
+    for (const auto &[I, A] : projected)
+      v[I] = A * v[I];
   };
-  // Norms weighted by the inverse lumped mass; the sums run over the active fields in
-  // order, so the result does not depend on the thread count.
-  const auto precondition = [&](const unsigned int I)
-  { return mass[I] > mass_tolerance ? r[I] / mass[I] : Tensor<1, dim>(); };
-  for (const unsigned int I : active)
+  const auto inverse_mass = [&](const unsigned int I)
+  { return mass[I] > mass_tolerance ? 1.0 / mass[I] : 0.0; };
+  // Norms weighted by the inverse lumped mass; the sums run over this rank's rows
+  // in order, then over the ranks, so they do not depend on the thread count.
+  const auto residual = [&]()
+  {
+    matrix.vmult(x, q);
+    for (const unsigned int I : rows)
+      r[I] = rhs[I] - q[I];
+    project(r);
+  };
+  for (const unsigned int I : rows)
     p[I] = rhs[I];
   project(p);
   double b2 = 0;
-  for (const unsigned int I : active)
-    if (mass[I] > mass_tolerance)
-      b2 += p[I] * p[I] / mass[I];
-  transfer.apply_consistent_mass(x, q);
-  for (const unsigned int I : active)
-    r[I] = rhs[I] - q[I];
-  project(r);
+  for (const unsigned int I : rows)
+    b2 += p[I] * p[I] * inverse_mass(I);
+  b2 = matrix.sum(b2);
+  constrain(x);
+  residual();
   double rz = 0;
-  for (const unsigned int I : active)
-    z[I] = precondition(I), p[I] = z[I], rz += r[I] * z[I];
+  for (const unsigned int I : rows)
+    z[I] = inverse_mass(I) * r[I], p[I] = z[I], rz += r[I] * z[I];
+  rz                = matrix.sum(rz);
   const double goal = run.consistent_mass_tolerance * run.consistent_mass_tolerance * b2;
-  for (unsigned int it = 0; rz > goal; ++it)
+  unsigned int it   = 0;
+  for (; rz > goal; ++it)
   {
     if (it == run.consistent_mass_iterations)
       return it + 1;
-    transfer.apply_consistent_mass(p, q);
+    matrix.vmult(p, q);
     project(q);
     double pq = 0;
-    for (const unsigned int I : active)
+    for (const unsigned int I : rows)
       pq += p[I] * q[I];
+    pq = matrix.sum(pq);
     // M_C is only semi-definite where a field has fewer particles than nodes.
     if (!(pq > 0))
       return run.consistent_mass_iterations + 1;
     const double alpha = rz / pq;
     double rz_new      = 0;
-    for (const unsigned int I : active)
+    for (const unsigned int I : rows)
     {
       x[I] += alpha * p[I];
       r[I] -= alpha * q[I];
-      z[I] = precondition(I);
+      z[I] = inverse_mass(I) * r[I];
       rz_new += r[I] * z[I];
     }
-    for (const unsigned int I : active)
+    rz_new = matrix.sum(rz_new);
+    for (const unsigned int I : rows)
       p[I] = z[I] + (rz_new / rz) * p[I];
     rz = rz_new;
-    if (rz <= goal)
-      return it + 1;
   }
-  return 0;
+  keep_momentum(fields, x, rhs, mass_tolerance);
+  return it;
+}
+
+template <int dim>
+void MassSolve<dim>::keep_momentum(const NodalFields<dim> &fields,
+                                   std::vector<Tensor<1, dim>> &x,
+                                   const std::vector<Tensor<1, dim>> &rhs,
+                                   const double mass_tolerance) const
+{
+  // Where nothing holds the fields, sum_I m_I x_I = sum_I b_I: the momentum the
+  // particles gain is the total force. Conjugate gradients preconditioned with the
+  // lumped mass keep this in exact arithmetic (1^T M_C = m_L^T), but the round-off
+  // of each iteration grows with the next ones; the uniform velocity that restores
+  // it is added to the fields the solve moved.
+  for (const auto &held : projected)
+    if (held.second != Tensor<2, dim>())
+      return;
+  const std::vector<unsigned int> &rows = matrix.rows();
+  std::vector<double> sums(2 * dim + 1, 0.0);
+  for (const unsigned int I : rows)
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      sums[d] += rhs[I][d] - fields.mass[I] * x[I][d];
+    if (fields.mass[I] > mass_tolerance)
+      sums[2 * dim] += fields.mass[I];
+  }
+  matrix.sum(sums);
+  if (!(sums[2 * dim] > 0))
+    return;
+  Tensor<1, dim> shift;
+  for (unsigned int d = 0; d < dim; ++d)
+    shift[d] = sums[d] / sums[2 * dim];
+  for (const unsigned int I : rows)
+    if (fields.mass[I] > mass_tolerance)
+      x[I] += shift;
 }
 
 template <int dim>

@@ -64,10 +64,11 @@ void RunParameters<dim>::time_entries(EntryList &list)
   list.add("Mass matrix", mass_matrix, "lumped", Patterns::Selection("lumped|consistent"),
            "The mass matrix of the grid's two solves per step. 'lumped' (the paper's, "
            "with 'Mass matrix corrections' Jacobi corrections towards the consistent "
-           "one); 'consistent': M_C = sum_p m_p N_Ip N_Jp of each body's field, solved "
-           "by conjugate gradients preconditioned with the lumped mass, from the lumped "
-           "solution, to 'Consistent mass tolerance' (each iteration costs two grid "
-           "transfers; one MPI rank; doc/shape_functions.md).");
+           "one); 'consistent': M_C = sum_p m_p N_Ip N_Jp of each body's field, "
+           "assembled each step as a Trilinos matrix and solved by conjugate gradients "
+           "preconditioned with the lumped mass, from the lumped solution, to "
+           "'Consistent mass tolerance' (any number of MPI ranks; "
+           "doc/shape_functions.md).");
   list.add("Consistent mass tolerance", consistent_mass_tolerance, "1e-10",
            Patterns::Double(0),
            "Mass matrix = consistent: the solve stops when the residual's norm weighted "

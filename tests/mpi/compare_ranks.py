@@ -9,7 +9,13 @@ history's largest value: reactions and contact forces are summed per rank, then 
 the ranks, so a component that is round-off differs), and no particle is lost or copied by the migration
 (the particle count and total mass at the end equal those at the start).
 
-usage: compare_ranks.py LME_MPM PRM OUTDIR NRANKS [--set "A/B=v" ...]
+With --tolerance TOL (before the --set options) the runs are compared within TOL
+instead: a solve to a tolerance (the consistent mass's conjugate gradients) sums
+over the ranks in another order, so the states agree to the solver's tolerance and
+not bit for bit. The checksums are then printed, not compared, and the iterations
+per solve (mass_solve_iterations) may differ by a few in a hundred.
+
+usage: compare_ranks.py LME_MPM PRM OUTDIR NRANKS [--tolerance TOL] [--set "A/B=v" ...]
 """
 import csv
 import json
@@ -52,6 +58,10 @@ def run(exe, prm, out, ranks, extra):
 def main():
     exe, prm, out, n = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
     extra = sys.argv[5:]
+    global TOLERANCE
+    bitwise = True
+    if extra[:1] == ["--tolerance"]:
+        TOLERANCE, bitwise, extra = float(extra[1]), False, extra[2:]
     one, h1 = run(exe, prm, os.path.join(out, "np1"), 1, extra)
     many, hn = run(exe, prm, os.path.join(out, f"np{n}"), n, extra)
     failures = []
@@ -66,7 +76,7 @@ def main():
         if abs(v["final_mass"] - v["initial_mass"]) > 1e-14 * v["initial_mass"]:
             failures.append(f"{s}: mass {v['final_mass']!r} at the end, "
                             f"{v['initial_mass']!r} at the start")
-    if one["state_checksum"] != many["state_checksum"]:
+    if bitwise and one["state_checksum"] != many["state_checksum"]:
         failures.append(f"particle states differ: checksum {one['state_checksum']} on 1 "
                         f"rank, {many['state_checksum']} on {n}")
     if h1[0] != hn[0] or len(h1) != len(hn):
@@ -90,8 +100,12 @@ def main():
             coln = [float(r[c]) for r in hn[1:]]
             scale = max(largest[family(name)], floor, 1e-300)
             diff = max(abs(a - b) for a, b in zip(col1, coln)) / scale
-            worst = max(worst, (diff, name))
-            if diff > TOLERANCE:
+            allowed = TOLERANCE
+            if not bitwise and name == "mass_solve_iterations":
+                allowed = 0.05
+            else:
+                worst = max(worst, (diff, name))
+            if diff > allowed:
                 failures.append(f"history.csv column {name}: relative difference {diff:.3e}"
                                 f" > {TOLERANCE}")
         print(f"history: {len(h1) - 1} rows, {len(h1[0])} columns; largest relative "
