@@ -178,6 +178,37 @@ unsigned int nodes_within_reach_bound(const std::array<std::vector<double>, dim>
           near[d][cell].push_back({gap * gap, node_h[d][i]});
       }
   }
+  // Cells alike along a direction (a uniform stretch of a graded grid) have the same
+  // list: only the distinct lists are combined, so the cost is that of the grid's
+  // classes of cells, not of its cells. Gaps are rounded down and spacings up to 1e-12
+  // (far inside the margins above) so that rounding does not split a class; the count
+  // can only grow by it.
+  for (unsigned int d = 0; d < dim; ++d)
+  {
+    const double gap_unit = 1e-12 * reach * reach, h_unit = 1e-12 * h_max;
+    for (auto &list : near[d])
+    {
+      for (Near &n : list)
+        n = {std::floor(n.gap2 / gap_unit) * gap_unit, std::ceil(n.h / h_unit) * h_unit};
+      std::sort(list.begin(), list.end(),
+                [](const Near &a, const Near &b)
+                { return a.gap2 < b.gap2 || (a.gap2 == b.gap2 && a.h < b.h); });
+    }
+    const auto key = [](const std::vector<Near> &list)
+    {
+      std::vector<double> k;
+      for (const Near &n : list)
+        k.push_back(n.gap2), k.push_back(n.h);
+      return k;
+    };
+    std::sort(near[d].begin(), near[d].end(),
+              [&](const std::vector<Near> &a, const std::vector<Near> &b)
+              { return key(a) < key(b); });
+    near[d].erase(std::unique(near[d].begin(), near[d].end(),
+                              [&](const std::vector<Near> &a, const std::vector<Near> &b)
+                              { return key(a) == key(b); }),
+                  near[d].end());
+  }
   unsigned int most = 0;
   for (const auto &zs : near[2])
     for (const auto &ys : near[1])
