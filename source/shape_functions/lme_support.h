@@ -340,39 +340,26 @@ private:
     const double R = Graded ? R_max : radius_over_h * h;
     auto &y1d      = scratch.y1d;
     auto &w1d      = scratch.w1d;
-    // On a graded grid trimmed at both ends to nodes that reach x along d (h_I <= its
-    // spacing along d).
+    // The nodes of [x - R, x + R] along each d, walked to from x's cell (a few nodes
+    // each way, cheaper than a search of graded coordinates and exact at the ends on
+    // any grid); on a graded grid then trimmed at both ends to nodes that reach x
+    // along d (h_I may be below R / radius_over_h there).
     for (unsigned int d = 0; d < dim; ++d)
     {
       const auto &c   = grid.coordinates(d);
       const double lo = x[d] - R, hi = x[d] + R;
-      unsigned int i_lo = 0, i_hi = c.size() - 1;
-      if constexpr (!Graded)
+      unsigned int i_lo = cell[d];
+      while (i_lo > 0 && c[i_lo - 1] >= lo)
+        --i_lo;
+      while (c[i_lo] < lo)
+        ++i_lo;
+      unsigned int i_hi = cell[d] + 1;
+      while (i_hi + 1 < c.size() && c[i_hi + 1] <= hi)
+        ++i_hi;
+      while (c[i_hi] > hi)
+        --i_hi;
+      if constexpr (Graded)
       {
-        if (lo > c.front())
-        {
-          grid.locate(lo, d, i_lo);
-          if (c[i_lo] < lo)
-            ++i_lo;
-        }
-        if (hi < c.back())
-          grid.locate(hi, d, i_hi);
-      }
-      else
-      {
-        // The first node at or above lo and the last at or below hi, walked to from
-        // x's cell: a few nodes each way, where a search of the graded coordinates
-        // costs more.
-        i_lo = cell[d];
-        while (i_lo > 0 && c[i_lo - 1] >= lo)
-          --i_lo;
-        while (c[i_lo] < lo)
-          ++i_lo;
-        i_hi = cell[d] + 1;
-        while (i_hi + 1 < c.size() && c[i_hi + 1] <= hi)
-          ++i_hi;
-        while (c[i_hi] > hi)
-          --i_hi;
         const auto reaches = [&](const unsigned int i)
         { return std::abs(x[d] - c[i]) <= radius_over_h * node_h[d][i]; };
         while (i_lo < i_hi && !reaches(i_lo))
