@@ -319,7 +319,8 @@ std::string Simulation<dim>::end_failed_run(const std::exception &e)
                             dynamic_cast<const ExcRunStopped *>(&e) != nullptr ||
                             dynamic_cast<const ExcStepLimit *>(&e) != nullptr ||
                             dynamic_cast<const ExcInterrupted *>(&e) != nullptr;
-  if (parts.ranks.distributed() && !on_all_ranks)
+  const bool step_failed = dynamic_cast<const ExcStepFailedOnAllRanks *>(&e) != nullptr;
+  if (parts.ranks.distributed() && !on_all_ranks && !step_failed)
     throw;
   std::string message = input::concise_message(e);
   if (!on_all_ranks)

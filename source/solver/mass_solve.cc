@@ -43,7 +43,7 @@ void MassSolve<dim>::solve(GridTransfer<dim> &transfer, std::vector<Tensor<1, di
            "has fewer particles than nodes (wide supports, few particles per cell); "
            "use 'Time/Mass matrix = lumped' (with 'Mass matrix corrections'), more "
            "particles per cell, or a looser tolerance";
-    AssertThrow(false, ExcMessage(msg.str()));
+    AssertThrow(false, ExcStepFailedOnAllRanks(msg.str()));
   }
   matrix.distribute(x);
   ++solves;

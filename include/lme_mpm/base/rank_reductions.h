@@ -1,10 +1,20 @@
 #ifndef LME_MPM_BASE_RANK_REDUCTIONS_H
 #define LME_MPM_BASE_RANK_REDUCTIONS_H
 
+#include <deal.II/base/exceptions.h>
+
+#include <string>
 #include <vector>
 
 namespace lme_mpm
 {
+/**
+ * A step that cannot go on, decided alike on every rank (from sums over the ranks, as
+ * a solve's convergence is): the run stops with its output kept, on one rank or
+ * several, and the message is prefixed with the step and time.
+ */
+DeclException1(ExcStepFailedOnAllRanks, std::string, << arg1);
+
 /**
  * What the parts of a step need from the split of a run over MPI ranks: sums and
  * maxima over the ranks, and which grid nodes this rank reports (so that a node's

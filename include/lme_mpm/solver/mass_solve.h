@@ -52,8 +52,6 @@ public:
   /// M_C of this step from the connectivity of @p transfer (after the particle-to-grid
   /// pass) and the masses of @p particles; nothing unless M_C is solved.
   void assemble(const GridTransfer<dim> &transfer, const ParticleStore<dim> &particles);
-  /// The assembled matrix (tests).
-  const ConsistentMassMatrix<dim> &consistent_matrix() const { return matrix; }
 
   /**
    * Turns the lumped solution in @p x (constraints imposed) into the run's: corrected,
