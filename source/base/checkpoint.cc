@@ -11,7 +11,7 @@ namespace checkpoint
 namespace
 {
 // Seven characters name the format, the eighth is its version.
-const char magic[9] = "LMEMPMCF";
+const char magic[9] = "LMEMPMCG";
 } // namespace
 
 void write(const std::string &file, const std::function<void(Archive &)> &serialize)

@@ -8,6 +8,8 @@
 #include <limits>
 #include <sstream>
 
+#include <sys/resource.h>
+
 namespace lme_mpm
 {
 namespace memory
@@ -37,6 +39,14 @@ void require(const double bytes, const std::string &entry, const std::string &wh
   msg << what << " needs about " << bytes / 1e9 << " GB; this machine has "
       << available / 1e9 << " GB available";
   AssertThrow(false, ExcBadInput(entry, msg.str()));
+}
+
+double peak_resident_bytes()
+{
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) != 0)
+    return 0;
+  return 1024.0 * usage.ru_maxrss; // kilobytes on Linux
 }
 } // namespace memory
 } // namespace lme_mpm

@@ -133,12 +133,6 @@ void Decomposition<dim>::partition(const BackgroundGrid<dim> &g, const HaloReach
 }
 
 template <int dim>
-std::size_t Decomposition<dim>::bytes_per_particle()
-{
-  return particle_messages::bytes_per_particle<dim>();
-}
-
-template <int dim>
 void Decomposition<dim>::distribute(ParticleStore<dim> &particles) const
 {
   if (size == 1)
@@ -207,6 +201,7 @@ void Decomposition<dim>::gather(const ParticleStore<dim> &particles,
                                 ParticleStore<dim> &all) const
 {
   all.resize(0);
+  all.keep_state(particles.kept_state());
   std::vector<char> mine;
   for (std::size_t p = 0; p < particles.size(); ++p)
     if (!particles.ghost[p])
@@ -235,6 +230,7 @@ void Decomposition<dim>::gather_failed(const ParticleStore<dim> &particles,
                                        const double reach, ParticleStore<dim> &view) const
 {
   view.resize(0);
+  view.keep_state(particles.kept_state());
   // The cells within reach of a failed particle here (owned or ghost: a failed
   // particle of another rank near this one's cells is among the ghosts); their owned
   // particles go to every rank. Intact ones a little farther do not change growth.

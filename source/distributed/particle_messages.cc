@@ -24,21 +24,12 @@ void for_fields(const ParticleStore<dim> &particles, F &&f)
 } // namespace
 
 template <int dim>
-std::size_t bytes_per_particle()
-{
-  ParticleStore<dim> probe;
-  std::size_t bytes = 0;
-  for_fields(probe, [&](const auto &, const std::size_t b) { bytes += b; });
-  return bytes;
-}
-
-template <int dim>
 void pack(const ParticleStore<dim> &particles, const std::size_t p,
           std::vector<char> &buffer)
 {
   // One resize per particle: the per-field ones cost more than the copies.
-  static const std::size_t total = bytes_per_particle<dim>();
-  char *at                       = nullptr;
+  const std::size_t total = particles.bytes_per_particle();
+  char *at                = nullptr;
   {
     const std::size_t end = buffer.size();
     buffer.resize(end + total);
@@ -56,7 +47,8 @@ template <int dim>
 void unpack(const std::vector<char> &buffer, ParticleStore<dim> &particles,
             const std::uint8_t ghost)
 {
-  const std::size_t bytes = bytes_per_particle<dim>();
+  // The sender kept the same fields (every rank's store keeps the run's state).
+  const std::size_t bytes = particles.bytes_per_particle();
   AssertThrow(buffer.size() % bytes == 0, ExcInternalError());
   const std::size_t n = buffer.size() / bytes, first = particles.size();
   particles.resize(first + n);
@@ -124,8 +116,6 @@ std::vector<char> all_to_all(MPI_Comm comm, const std::vector<std::vector<char>>
   return received;
 }
 
-template std::size_t bytes_per_particle<2>();
-template std::size_t bytes_per_particle<3>();
 template void pack(const ParticleStore<2> &, std::size_t, std::vector<char> &);
 template void pack(const ParticleStore<3> &, std::size_t, std::vector<char> &);
 template void unpack(const std::vector<char> &, ParticleStore<2> &, std::uint8_t);

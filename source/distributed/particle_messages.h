@@ -18,9 +18,6 @@ namespace lme_mpm
  */
 namespace particle_messages
 {
-/// Bytes one particle takes in a message.
-template <int dim>
-std::size_t bytes_per_particle();
 /// Appends particle @p p of @p particles to @p buffer.
 template <int dim>
 void pack(const ParticleStore<dim> &particles, std::size_t p, std::vector<char> &buffer);

@@ -10,9 +10,27 @@ void ParticleStore<dim>::resize(const std::size_t n)
   const std::size_t old = strength.size();
   for_each_field([n](auto &v) { v.resize(n); });
   // A new particle has its material's strength until a strength field says otherwise.
-  if (n > old)
+  if (optional.fracture && n > old)
     std::fill(strength.begin() + old, strength.end(), 1.0);
   ++version;
+}
+
+template <int dim>
+void ParticleStore<dim>::keep_state(const OptionalState &kept)
+{
+  for_each_dropped_field(kept, [](auto &v) { std::decay_t<decltype(v)>().swap(v); });
+  optional = kept;
+  resize(size());
+}
+
+template <int dim>
+std::size_t ParticleStore<dim>::bytes_per_particle() const
+{
+  std::size_t bytes = 0;
+  const_cast<ParticleStore<dim> *>(this)->for_each_field(
+      [&](auto &field)
+      { bytes += sizeof(typename std::decay_t<decltype(field)>::value_type); });
+  return bytes;
 }
 
 template <int dim>
@@ -76,14 +94,36 @@ bool ParticleStore<dim>::sort_by_cell(const unsigned int n_cells)
     }
   }
 
+  // Moved in place along the permutation's cycles, each field walked from the same
+  // starts: a particle that keeps its place costs one look, and no field is copied
+  // whole (a copy of the largest field was part of a run's peak memory).
+  std::vector<std::uint32_t> starts;
+  {
+    std::vector<bool> seen(n, false);
+    for (std::size_t q = 0; q < n; ++q)
+    {
+      if (seen[q] || permutation[q] == q)
+        continue;
+      starts.push_back(static_cast<std::uint32_t>(q));
+      for (std::size_t k = q; !seen[k]; k = permutation[k])
+        seen[k] = true;
+    }
+  }
   for_each_field(
-      [this, n](auto &field)
+      [this, &starts](auto &field)
       {
-        using V = std::decay_t<decltype(field)>;
-        V reordered(n);
-        for (std::size_t q = 0; q < n; ++q)
-          reordered[q] = field[permutation[q]];
-        field.swap(reordered);
+        for (const std::uint32_t q : starts)
+        {
+          // The particle now at k was at permutation[k]: fill the cycle from q on.
+          const auto first = field[q];
+          std::size_t k    = q;
+          for (std::size_t from = permutation[k]; from != q; from = permutation[k])
+          {
+            field[k] = field[from];
+            k        = from;
+          }
+          field[k] = first;
+        }
       });
   sorted_at = ++version;
   return true;

@@ -299,7 +299,7 @@ CrackBand crack_band(const ParticleStore<dim> &p, const unsigned int body,
                      const CrackPath &path, const std::vector<Point<2>> &line)
 {
   CrackBand band;
-  if (path.widths.empty() || line.empty())
+  if (path.widths.empty() || line.empty() || !p.kept_state().fracture)
     return band;
   // The median width over the central 80 % of the path.
   const std::size_t n = path.widths.size();

@@ -107,6 +107,7 @@ public:
   }
 
   std::string name() const override { return "lme"; }
+  bool keeps_particle_state() const override { return true; }
   unsigned int max_nodes_per_particle() const override { return support.max_nodes(); }
   double support_radius(const BackgroundGrid<dim> &) const override
   {
@@ -122,6 +123,9 @@ public:
                const std::size_t end, Connectivity<dim> &conn) const override
   {
     Assert(conn.stride >= support.max_nodes(), ExcInternalError());
+    AssertThrow(particles.kept_state().shape_function,
+                ExcMessage("LME shape functions need the particles' warm-start state, "
+                           "which this particle store has dropped"));
     Scratch scratch{support.make_offsets()};
     const bool graded = support.is_graded();
     for (std::size_t p = begin; p < end; ++p)

@@ -1,6 +1,7 @@
 #include <lme_mpm/base/file_writing.h>
 #include <lme_mpm/base/format.h>
 #include <lme_mpm/base/input.h>
+#include <lme_mpm/base/memory.h>
 #include <lme_mpm/output/run_files.h>
 #include <lme_mpm/simulation/run_output.h>
 
@@ -424,6 +425,7 @@ RunSummary RunOutput<dim>::summarise(const double wall, const unsigned int steps
 {
   // Every rank takes part in the gathering; rank 0 summarises.
   const ParticleStore<dim> &all = observed();
+  const double peak_resident    = parts.ranks.max(memory::peak_resident_bytes());
   RunSummary summary;
   if (!writes_files())
     return summary;
@@ -439,6 +441,7 @@ RunSummary RunOutput<dim>::summarise(const double wall, const unsigned int steps
   results["smallest_time_step"]        = clock.smallest_step();
   results["travel_limited_steps"]      = clock.limited_steps();
   results["particle_steps_per_second"] = n_particles * double(steps) / wall;
+  results["peak_resident_megabytes"]   = peak_resident / 1e6; // largest of the ranks
   if (const auto [changed, sorts] = parts.transfer.reorders(); sorts > 0)
     results["particle_reorder_share"] = double(changed) / sorts;
   results["max_energy_drift"]          = energy.max_drift();

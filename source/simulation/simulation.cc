@@ -57,8 +57,9 @@ Simulation<dim>::Simulation(ParameterHandler &prm, const ParameterCounts &counts
   clock.set_up(ts, parts.parameters.end_time, parts.parameters.particle_travel,
                parts.grid.min_spacing());
   dt = ts.dt;
-  setup_particles(prm, counts);
   setup_shape_functions(prm);
+  setup_particles(prm, counts);
+  couple_shape_functions();
   setup_bodies_and_contact(prm, counts);
   if (parts.parameters.output_interval <= 0)
     parts.parameters.output_interval = parts.parameters.end_time / 20;
@@ -163,6 +164,15 @@ void Simulation<dim>::setup_shape_functions(ParameterHandler &prm)
   context.grid         = &parts.grid;
   context.thickness    = parts.parameters.thickness;
   parts.shape_function = create_shape_function(prm, context);
+  // The particles keep only the state the run's parts use (set before they are made,
+  // so the dropped fields never count in the run's memory).
+  parts.particles.keep_state(
+      {parts.shape_function->keeps_particle_state(), parts.fracture.active()});
+}
+
+template <int dim>
+void Simulation<dim>::couple_shape_functions()
+{
   parts.fracture.set_crack_band(*parts.shape_function);
   parts.transfer.nodes().layout.reinit(parts.grid.n_nodes());
   if (!parts.cracks.empty())

@@ -111,7 +111,6 @@ void GridTransfer<dim>::particles_to_grid(
   // threads.
   fields.clear(extra_nodes);
   conn.resize(particles.size(), shape_function.max_nodes_per_particle());
-  increment.resize(particles.size());
   const unsigned int below = slab_below, above = slab_above;
   std::atomic<unsigned int> reach_below{below}, reach_above{above};
   scatter_chunks(
@@ -165,19 +164,13 @@ void GridTransfer<dim>::strain_increments(const std::size_t b, const std::size_t
   {
     const std::size_t o = p * conn.stride;
     Tensor<2, dim> grad_v;
-    Tensor<1, dim> v;
     for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
-    {
-      const Tensor<1, dim> &w = fields.rate[conn.nodes[o + k]];
-      grad_v += outer_product(w, conn.grad_N[o + k]);
-      v += conn.N[o + k] * w;
-    }
+      grad_v += outer_product(fields.rate[conn.nodes[o + k]], conn.grad_N[o + k]);
     const SymmetricTensor<2, dim> de = dt * symmetrize(grad_v);
     particles.strain_increment[p]    = de;
     particles.strain[p] += de;
     particles.density[p] /= (1 + trace(de));
     particles.volume[p] = particles.mass[p] / particles.density[p];
-    increment[p]        = dt * v;
   }
 }
 
@@ -244,15 +237,18 @@ double GridTransfer<dim>::grid_to_particles(const ExplicitNewmark &newmark,
           particles.velocity[p] =
               newmark.corrected_velocity(v0, particles.acceleration[p], a, dt);
           particles.acceleration[p] = a;
-          particles.position[p] += increment[p];
+          // The rates are those the strains were taken from (nothing changes them
+          // after the predictor): interpolated here, not stored per particle.
+          const Tensor<1, dim> increment = dt * interpolate(fields.rate, p);
+          particles.position[p] += increment;
           // Ghosts (copies of another rank's particles) are that rank's to sum and
           // check; their results near the halo's edge are not meant to be right.
           if (particles.ghost[p])
             continue;
           if (prescribed_body.empty() || !prescribed_body[particles.body_id[p]])
-            pw += particles.mass[p] * (body_force * increment[p]);
+            pw += particles.mass[p] * (body_force * increment);
           v2                = std::max(v2, particles.velocity[p].norm_square());
-          const double move = increment[p].norm();
+          const double move = increment.norm();
           // Leaving the grid is caught here, where the guard's flag rides on the
           // step's one reduction, not at the next step's search of cells.
           if (!(move < max_move) || !std::isfinite(particles.velocity[p].norm_square()) ||

@@ -4,6 +4,7 @@
 #include <lme_mpm/particles/particle_store.h>
 
 #include "../../source/distributed/particle_messages.h"
+#include "store_bytes.h"
 
 #include <cstring>
 #include <random>
@@ -12,35 +13,15 @@ using namespace lme_mpm;
 
 namespace
 {
-/// Every byte of every field of particle p.
-std::vector<unsigned char> bytes_of(ParticleStore<3> &store, const std::size_t p)
-{
-  std::vector<unsigned char> b;
-  store.for_each_field(
-      [&](auto &field)
-      {
-        const auto *c = reinterpret_cast<const unsigned char *>(&field[p]);
-        b.insert(b.end(), c, c + sizeof(field[p]));
-      });
-  return b;
-}
-
-/// A store whose every field holds distinct bytes.
-ParticleStore<3> random_store(const unsigned int n)
+/// A store whose every field kept holds distinct bytes.
+ParticleStore<3> random_store(const unsigned int n,
+                              const ParticleStore<3>::OptionalState &kept = {})
 {
   ParticleStore<3> store;
+  store.keep_state(kept);
   store.resize(n);
   std::mt19937 rng(9);
-  store.for_each_field(
-      [&](auto &field)
-      {
-        for (auto &v : field)
-        {
-          auto *c = reinterpret_cast<unsigned char *>(&v);
-          for (std::size_t k = 0; k < sizeof(v); ++k)
-            c[k] = static_cast<unsigned char>(rng());
-        }
-      });
+  lme_mpm_test::fill_random_bytes(store, rng);
   for (unsigned int p = 0; p < n; ++p)
     store.ghost[p] = 0;
   return store;
@@ -49,21 +30,37 @@ ParticleStore<3> random_store(const unsigned int n)
 
 TEST(ParticleMessages, PackThenUnpackKeepsEveryField)
 {
-  ParticleStore<3> store = random_store(20);
-  std::vector<char> buffer;
-  for (const std::size_t p : {3u, 7u, 19u})
-    particle_messages::pack(store, p, buffer);
-  EXPECT_EQ(buffer.size(), 3 * particle_messages::bytes_per_particle<3>());
-  ParticleStore<3> received = random_store(2);
-  particle_messages::unpack(buffer, received, 1);
-  ASSERT_EQ(received.size(), 5u);
-  const std::size_t sent[] = {3, 7, 19};
-  for (std::size_t k = 0; k < 3; ++k)
-  {
-    EXPECT_EQ(received.ghost[2 + k], 1);
-    received.ghost[2 + k] = store.ghost[sent[k]];
-    EXPECT_EQ(bytes_of(received, 2 + k), bytes_of(store, sent[k])) << k;
-  }
+  // Every combination of the optional state: a run that drops some sends the rest.
+  std::size_t all_fields = 0;
+  for (const bool shape : {true, false})
+    for (const bool fracture : {true, false})
+    {
+      const ParticleStore<3>::OptionalState kept{shape, fracture};
+      ParticleStore<3> store = random_store(20, kept);
+      std::vector<char> buffer;
+      for (const std::size_t p : {3u, 7u, 19u})
+        particle_messages::pack(store, p, buffer);
+      EXPECT_EQ(buffer.size(), 3 * store.bytes_per_particle());
+      if (shape && fracture)
+        all_fields = store.bytes_per_particle();
+      else // 3D: 120 bytes of warm start, 72 of fracture state
+        EXPECT_EQ(store.bytes_per_particle(),
+                  all_fields - (shape ? 0 : 120) - (fracture ? 0 : 72));
+      ParticleStore<3> received = random_store(2, kept);
+      particle_messages::unpack(buffer, received, 1);
+      ASSERT_EQ(received.size(), 5u);
+      EXPECT_EQ(received.lme_lambda.size(), shape ? 5u : 0u);
+      EXPECT_EQ(received.strength.size(), fracture ? 5u : 0u);
+      const std::size_t sent[] = {3, 7, 19};
+      for (std::size_t k = 0; k < 3; ++k)
+      {
+        EXPECT_EQ(received.ghost[2 + k], 1);
+        received.ghost[2 + k] = store.ghost[sent[k]];
+        EXPECT_EQ(lme_mpm_test::particle_bytes(received, 2 + k),
+                  lme_mpm_test::particle_bytes(store, sent[k]))
+            << k;
+      }
+    }
 }
 
 TEST(ParticleMessages, CompactKeepsTheFlaggedInOrder)
@@ -77,7 +74,8 @@ TEST(ParticleMessages, CompactKeepsTheFlaggedInOrder)
   for (std::size_t p = 0; p < 10; ++p)
     if (keep[p])
     {
-      EXPECT_EQ(bytes_of(store, k++), bytes_of(copy, p));
+      EXPECT_EQ(lme_mpm_test::particle_bytes(store, k++),
+                lme_mpm_test::particle_bytes(copy, p));
     }
 }
 

@@ -18,6 +18,10 @@ double available_bytes();
  * machine stops with the amount it needs instead of swapping or being killed.
  */
 void require(double bytes, const std::string &entry, const std::string &what);
+
+/// The largest resident set this process has had so far (bytes; getrusage's
+/// ru_maxrss): what a run's memory per particle is measured by.
+double peak_resident_bytes();
 } // namespace memory
 } // namespace lme_mpm
 

@@ -123,9 +123,6 @@ public:
   /// @p text of rank @p root on every rank.
   std::string broadcast(const std::string &text, unsigned int root = 0) const;
 
-  /// Bytes one particle takes in a message (every field of the store).
-  static std::size_t bytes_per_particle();
-
 private:
   MPI_Comm comm;
   unsigned int size = 1, my_rank = 0;

@@ -30,11 +30,12 @@ inline double stress_factor(const ParticleStore<dim> &particles, const std::size
   return particles.failed[p] ? 0.0 : 1 - particles.damage[p];
 }
 
-/// True if particle @p p has a crack of crack-oriented damage.
+/// True if particle @p p has a crack of crack-oriented damage (never in a run without
+/// a fracture model, whose store drops the crack normals).
 template <int dim>
 inline bool has_crack_normal(const ParticleStore<dim> &particles, const std::size_t p)
 {
-  return particles.crack_normal[p].norm_square() > 0;
+  return !particles.crack_normal.empty() && particles.crack_normal[p].norm_square() > 0;
 }
 
 /**

@@ -8,6 +8,7 @@
 #include <lme_mpm/base/dealii.h>
 
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace lme_mpm
@@ -30,6 +31,32 @@ public:
                   unsigned int body);
 
   void resize(std::size_t n);
+
+  /**
+   * Per-particle state that only some runs use. A run keeps what its parts read and
+   * drops the rest before its particles are made: dropped fields stay empty, are not
+   * resized, sorted, sent to other ranks or checkpointed, and their readers see them as
+   * empty (memory per particle: doc/performance.md, "Cost against size"). A new store
+   * keeps everything.
+   */
+  struct OptionalState
+  {
+    /// lme_lambda, lme_position and lme_lambda_rate: the shape functions' warm start.
+    bool shape_function = true;
+    /// onset_strain, onset_stress, crack_opening, dissipated, strength, crack_normal
+    /// and crack_coupling: what a fracture model writes (damage and failed stay, as
+    /// every stress and output reads them).
+    bool fracture = true;
+    bool operator==(const OptionalState &o) const
+    {
+      return shape_function == o.shape_function && fracture == o.fracture;
+    }
+  };
+  /// Keeps the fields @p kept names (sized as the others, zeroed) and frees the rest.
+  void keep_state(const OptionalState &kept);
+  const OptionalState &kept_state() const { return optional; }
+  /// Bytes of one particle over every field kept (what a message or checkpoint holds).
+  std::size_t bytes_per_particle() const;
 
   /**
    * Sorts by `cell` (which the caller has filled) over @p n_cells cells, and by `id`
@@ -107,19 +134,74 @@ public:
   /// boundary see all their neighbours, but it is not output, summed or checked.
   std::vector<std::uint8_t> ghost;
 
-  /// Calls f(vector) for every per-particle field.
+  /// Calls f(vector) for every per-particle field kept (kept_state()).
   template <class F>
   void for_each_field(F &&f)
   {
-    f(position), f(reference_position), f(velocity), f(acceleration), f(mass), f(volume),
-        f(initial_volume), f(density), f(strain), f(strain_increment), f(stress), f(id),
-        f(material_id), f(body_id), f(cell), f(lme_lambda), f(lme_position),
-        f(lme_lambda_rate), f(damage), f(onset_strain), f(onset_stress), f(crack_opening),
-        f(dissipated), f(strength), f(failed), f(crack_normal), f(crack_coupling),
-        f(ghost);
+    visit_fields([&](auto &field, bool) { f(field); }, false);
+  }
+  /**
+   * Calls f(vector, kept) for every per-particle field, dropped ones included (empty,
+   * with kept false), in the order for_each_field() visits the kept ones: what a
+   * checksum of the state reads, so that dropping a field changes no checksum.
+   */
+  template <class F>
+  void for_all_fields(F &&f)
+  {
+    visit_fields(f, true);
+  }
+  /// The value a dropped field stands for: what a kept one holds in a run that does not
+  /// use it (zero; the strength factor 1).
+  template <class T>
+  T dropped_value(const std::vector<T> &field) const
+  {
+    if constexpr (std::is_same_v<T, double>)
+      if (&field == &strength)
+        return 1.0;
+    return T();
   }
 
 private:
+  /// The one list of fields: f(vector, kept) for each kept one, and for the dropped
+  /// ones too if @p all.
+  template <class F>
+  void visit_fields(F &&f, const bool all)
+  {
+    auto always = [&](auto &field) { f(field, true); };
+    auto shape  = [&](auto &field)
+    {
+      if (optional.shape_function || all)
+        f(field, optional.shape_function);
+    };
+    auto fracture = [&](auto &field)
+    {
+      if (optional.fracture || all)
+        f(field, optional.fracture);
+    };
+    always(position), always(reference_position), always(velocity), always(acceleration),
+        always(mass), always(volume), always(initial_volume), always(density),
+        always(strain), always(strain_increment), always(stress), always(id),
+        always(material_id), always(body_id), always(cell);
+    shape(lme_lambda), shape(lme_position), shape(lme_lambda_rate);
+    always(damage);
+    fracture(onset_strain), fracture(onset_stress), fracture(crack_opening),
+        fracture(dissipated), fracture(strength);
+    always(failed);
+    fracture(crack_normal), fracture(crack_coupling);
+    always(ghost);
+  }
+  /// Calls f(vector) for the fields of the state @p kept drops.
+  template <class F>
+  void for_each_dropped_field(const OptionalState &kept, F &&f)
+  {
+    if (!kept.shape_function)
+      f(lme_lambda), f(lme_position), f(lme_lambda_rate);
+    if (!kept.fracture)
+      f(onset_strain), f(onset_stress), f(crack_opening), f(dissipated), f(strength),
+          f(crack_normal), f(crack_coupling);
+  }
+
+  OptionalState optional;
   std::vector<std::size_t> offsets;
   std::vector<std::uint32_t> permutation;
   std::uint64_t version = 0;

@@ -67,6 +67,13 @@ public:
 
   virtual std::string name() const = 0;
 
+  /**
+   * True if compute() reads and writes the shape functions' per-particle state
+   * (ParticleStore::lme_lambda, lme_position, lme_lambda_rate: a warm start). A run
+   * whose functions keep none drops those fields.
+   */
+  virtual bool keeps_particle_state() const { return false; }
+
   /// Upper bound of nodes coupled to one particle on this grid.
   virtual unsigned int max_nodes_per_particle() const = 0;
 

@@ -69,9 +69,13 @@ public:
 private:
   // Set-up, in order.
   void setup_scene(ParameterHandler &prm, const ParameterCounts &counts);
+  /// Creates the shape functions and sets the particle state the run keeps.
+  void setup_shape_functions(ParameterHandler &prm);
   void setup_particles(ParameterHandler &prm, const ParameterCounts &counts);
   void check_initial_motion(const std::vector<std::string> &body_sections) const;
-  void setup_shape_functions(ParameterHandler &prm);
+  /// What depends on the shape functions and the particles: the crack band, the
+  /// explicit cracks' fields.
+  void couple_shape_functions();
   void setup_bodies_and_contact(ParameterHandler &prm, const ParameterCounts &counts);
   /// Sets up the split over MPI ranks and keeps this rank's particles.
   void distribute();

@@ -73,8 +73,8 @@ public:
 
   /// Displacement rate w = v + dt/2 a on every field with mass.
   void predict_rates(const ExplicitNewmark &newmark, double dt, double mass_tolerance);
-  /// Strain increment, strain, density, volume and displacement increment of
-  /// [begin, end) from the nodal rates.
+  /// Strain increment, strain, density and volume of [begin, end) from the nodal
+  /// rates.
   void strain_increments(std::size_t begin, std::size_t end, double dt);
   /// Internal forces (damaged stress) and body force of [begin, end) on the nodes.
   void forces(std::size_t begin, std::size_t end, const Tensor<1, dim> &body_force);
@@ -259,8 +259,6 @@ private:
   // layers so far: the slab width of the scatter.
   unsigned int slab_below = 0, slab_above = 0;
   const RankReductions *ranks = nullptr;
-  /// Per particle: the displacement increment of the step.
-  std::vector<Tensor<1, dim>> increment;
   std::vector<std::uint8_t> prescribed_body;
   /// Per particle: scratch of the consistent-mass product.
   std::vector<Tensor<1, dim>> particle_scratch;
