@@ -27,8 +27,7 @@ Energies EnergyBalance<dim>::measure(const ParticleStore<dim> &store,
   // One pass: kinetic, strain and dissipated energy of each block of particles. A
   // material sums its strain energy over ranges of particles, so the ghosts of a
   // distributed run split a block into the ranges of owned particles between them.
-  const bool fracture = store.kept_state().fracture;
-  const auto block    = [&](const std::size_t b, const std::size_t end)
+  const auto block = [&](const std::size_t b, const std::size_t end)
   {
     Tensor<1, 3> s;
     std::size_t from = b;
@@ -43,8 +42,7 @@ Energies EnergyBalance<dim>::measure(const ParticleStore<dim> &store,
       }
       if (excluded.empty() || !excluded[store.body_id[p]])
         s[0] += 0.5 * store.mass[p] * store.velocity[p].norm_square();
-      if (fracture)
-        s[2] += store.dissipated[p];
+      s[2] += store.value_at(store.dissipated, p);
     }
     return s;
   };

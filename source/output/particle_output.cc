@@ -122,11 +122,11 @@ void ParticleOutput<dim>::patches(
       patch.data(k++, 0) = particles.position[p][d] - particles.reference_position[p][d];
     for (unsigned int d = 0; d < dim; ++d)
       patch.data(k++, 0) = particles.velocity[p][d];
-    // A run without a fracture model keeps no fracture state: its values are the
-    // ones such a run would hold (ParticleStore::dropped_value()).
-    const bool fracture = particles.kept_state().fracture;
+    // A run without a fracture model keeps no fracture state: value_at() gives the
+    // values such a run would hold.
+    const Tensor<1, dim> normal = particles.value_at(particles.crack_normal, p);
     for (unsigned int d = 0; d < dim; ++d)
-      patch.data(k++, 0) = fracture ? particles.crack_normal[p][d] : 0.0;
+      patch.data(k++, 0) = normal[d];
     const SymmetricTensor<2, dim> stress = effective_stress(particles, p);
     for (const auto *s : {&stress, &particles.stress[p], &particles.strain[p]})
       for (unsigned int i = 0; i < dim; ++i)
@@ -135,11 +135,11 @@ void ParticleOutput<dim>::patches(
     patch.data(k++, 0) = largest_principal(stress);
     patch.data(k++, 0) = particles.damage[p];
     patch.data(k++, 0) = particles.failed[p];
-    patch.data(k++, 0) = fracture ? particles.onset_strain[p] : 0.0;
-    patch.data(k++, 0) = fracture ? particles.crack_opening[p] : 0.0;
+    patch.data(k++, 0) = particles.value_at(particles.onset_strain, p);
+    patch.data(k++, 0) = particles.value_at(particles.crack_opening, p);
     patch.data(k++, 0) =
-        fracture ? particles.dissipated[p] / particles.initial_volume[p] : 0.0;
-    patch.data(k++, 0) = fracture ? particles.strength[p] : 1.0;
+        particles.value_at(particles.dissipated, p) / particles.initial_volume[p];
+    patch.data(k++, 0) = particles.value_at(particles.strength, p);
     patch.data(k++, 0) = particles.material_id[p];
     patch.data(k++, 0) = particles.body_id[p];
     patch.data(k++, 0) = particles.id[p];

@@ -85,10 +85,9 @@ void write_particle_rows(std::ostream &out, const ParticleStore<dim> &store,
       for (unsigned int d = 0; d < dim; ++d)
         out << ',' << store.reference_position[p][d];
       out << ',' << damage(p);
-      if (with_body && store.kept_state().fracture)
-        out << ',' << store.dissipated[p] << ',' << store.crack_opening[p];
-      else if (with_body)
-        out << ",0,0";
+      if (with_body)
+        out << ',' << store.value_at(store.dissipated, p) << ','
+            << store.value_at(store.crack_opening, p);
       out << '\n';
     }
 }

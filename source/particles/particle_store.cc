@@ -18,8 +18,14 @@ void ParticleStore<dim>::resize(const std::size_t n)
 template <int dim>
 void ParticleStore<dim>::keep_state(const OptionalState &kept)
 {
-  for_each_dropped_field(kept, [](auto &v) { std::decay_t<decltype(v)>().swap(v); });
   optional = kept;
+  visit_fields(
+      [](auto &field, const bool keep)
+      {
+        if (!keep)
+          std::decay_t<decltype(field)>().swap(field);
+      },
+      true);
   resize(size());
 }
 

@@ -170,15 +170,10 @@ std::uint64_t Simulation<dim>::state_checksum()
       // A dropped field counts as the value it stands for, so the checksum does not
       // depend on which state a run keeps.
       store.for_all_fields(
-          [&](auto &field, const bool kept)
+          [&](auto &field)
           {
-            if (kept)
-              hash = fnv(hash, &field[p], sizeof(field[p]));
-            else
-            {
-              const auto value = store.dropped_value(field);
-              hash             = fnv(hash, &value, sizeof(value));
-            }
+            const auto value = store.value_at(field, p);
+            hash             = fnv(hash, &value, sizeof(value));
           });
       total += hash;
     }

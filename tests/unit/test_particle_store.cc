@@ -137,15 +137,16 @@ TEST(ParticleStore, DroppedStateStaysEmptyAndReturnsZeroed)
 
 TEST(ParticleStore, ADroppedFieldReadsAsTheValueAKeptOneHoldsInSuchARun)
 {
-  // The state checksum walks every field, dropped ones as dropped_value(): a run that
-  // drops the state it does not use must hash as one that kept it untouched.
+  // The state checksum walks every field through value_at(), dropped ones as their
+  // dropped_value(): a run that drops the state it does not use must hash as one that
+  // kept it untouched.
   const auto bytes = [](ParticleStore<2> &store, const std::size_t p)
   {
     std::vector<unsigned char> b;
     store.for_all_fields(
-        [&](auto &field, const bool kept)
+        [&](auto &field)
         {
-          const auto value = kept ? field[p] : store.dropped_value(field);
+          const auto value = store.value_at(field, p);
           const auto *c    = reinterpret_cast<const unsigned char *>(&value);
           b.insert(b.end(), c, c + sizeof(value));
         });

@@ -47,10 +47,6 @@ public:
     /// and crack_coupling: what a fracture model writes (damage and failed stay, as
     /// every stress and output reads them).
     bool fracture = true;
-    bool operator==(const OptionalState &o) const
-    {
-      return shape_function == o.shape_function && fracture == o.fracture;
-    }
   };
   /// Keeps the fields @p kept names (sized as the others, zeroed) and frees the rest.
   void keep_state(const OptionalState &kept);
@@ -141,14 +137,20 @@ public:
     visit_fields([&](auto &field, bool) { f(field); }, false);
   }
   /**
-   * Calls f(vector, kept) for every per-particle field, dropped ones included (empty,
-   * with kept false), in the order for_each_field() visits the kept ones: what a
-   * checksum of the state reads, so that dropping a field changes no checksum.
+   * Calls f(vector) for every per-particle field, dropped ones included (empty), in
+   * the order for_each_field() visits the kept ones: what a checksum of the state reads
+   * (through value_at()), so that dropping a field changes no checksum.
    */
   template <class F>
   void for_all_fields(F &&f)
   {
-    visit_fields(f, true);
+    visit_fields([&](auto &field, bool) { f(field); }, true);
+  }
+  /// Particle @p p's value of @p field, or dropped_value() if the run dropped it.
+  template <class T>
+  T value_at(const std::vector<T> &field, const std::size_t p) const
+  {
+    return field.empty() ? dropped_value(field) : field[p];
   }
   /// The value a dropped field stands for: what a kept one holds in a run that does not
   /// use it (zero; the strength factor 1).
@@ -189,16 +191,6 @@ private:
     always(failed);
     fracture(crack_normal), fracture(crack_coupling);
     always(ghost);
-  }
-  /// Calls f(vector) for the fields of the state @p kept drops.
-  template <class F>
-  void for_each_dropped_field(const OptionalState &kept, F &&f)
-  {
-    if (!kept.shape_function)
-      f(lme_lambda), f(lme_position), f(lme_lambda_rate);
-    if (!kept.fracture)
-      f(onset_strain), f(onset_stress), f(crack_opening), f(dissipated), f(strength),
-          f(crack_normal), f(crack_coupling);
   }
 
   OptionalState optional;
