@@ -132,6 +132,8 @@ public:
   /// Crack-oriented damage takes its normal from the neighbourhood's mean stress.
   bool reads_stress_tensors() const override { return oriented; }
   bool reads_strength_factors() const override { return true; }
+  /// Every read of a row tests the distance (band_opening() against the row's radius).
+  bool reads_rows_with_skin() const override { return true; }
   double search_radius(const double h) const override
   {
     return std::max(C_eps, measured_band ? band_cells : 0.0) * h;
@@ -158,10 +160,9 @@ public:
         continue;
       // Lengths from the particle's own cell: on a graded grid a crack in coarse cells
       // spreads over a wider band than one in fine cells.
-      const double h_p          = F.spacing_of(p, grid_spacing);
-      const double eps          = C_eps * h_p;
-      const double eps2         = eps * eps;
-      const auto [eps_I, sig_I] = damage_drive(P, p, F.max_principal_stress[p]);
+      const double h_p  = F.spacing_of(p, grid_spacing);
+      const double eps  = C_eps * h_p;
+      const double eps2 = eps * eps;
       if (P.onset_strain[p] == 0)
       {
         // With oriented damage a cracked neighbour's stress follows its crack's law,
@@ -174,8 +175,12 @@ public:
             ms += P.mass[*q] * F.max_principal_stress[*q];
             m += P.mass[*q];
           }
-        // Onset needs the particle itself in tension, so that its modulus is known.
-        if (!(ms > f_t * P.strength[p] * m && eps_I > 0 && sig_I > 0))
+        // Onset needs the particle itself in tension, so that its modulus is known
+        // (its drive is found only where the mean has reached the strength).
+        if (!(ms > f_t * P.strength[p] * m))
+          continue;
+        const auto [eps_I, sig_I] = damage_drive(P, p, F.max_principal_stress[p]);
+        if (!(eps_I > 0 && sig_I > 0))
           continue;
         if (!oriented)
         {
@@ -197,6 +202,7 @@ public:
         }
         continue;
       }
+      const auto [eps_I, sig_I] = damage_drive(P, p, F.max_principal_stress[p]);
       const double h = band_width > 0 ? band_width : F.band_cells_of(P.body_id[p]) * h_p;
       const double strain_beyond = eps_I - P.onset_strain[p];
       double chi_new             = 0;
@@ -330,8 +336,11 @@ private:
           lo = hi;
         for (int i = 0; i < 60 && hi > lo; ++i)
         {
-          const double mid       = 0.5 * (lo + hi);
-          (f(mid) > 0 ? lo : hi) = mid;
+          const double mid = 0.5 * (lo + hi);
+          double &bound    = f(mid) > 0 ? lo : hi;
+          if (bound == mid) // neighbouring doubles: every later halving repeats this
+            break;
+          bound = mid;
         }
         w = 0.5 * (lo + hi);
       }
@@ -365,10 +374,12 @@ private:
       return own;
     // The reach is a distance between particle positions at t = 0; a tenth of a cell
     // lets particles that have moved a little still count.
-    const double along_max = reach + 0.1 * h_p, off2 = 0.0625 * h_p * h_p;
+    const double along_max = reach + 0.1 * h_p, off2 = 0.0625 * h_p * h_p,
+                 within2 = nb.radius() * nb.radius();
     Tensor<1, dim> n;
-    bool have_normal = false;
-    double band      = own;
+    bool have_normal    = false;
+    double band         = own;
+    const double peak_p = law_peak(P.onset_stress[p], P.strength[p]);
     for (auto q = nb.begin(p); q != nb.end(p); ++q)
     {
       if (F.crack_opening[*q] <= 0)
@@ -376,16 +387,17 @@ private:
       // The band shares one opening w, not one fraction of a critical opening: q's
       // fraction is of its own w_end = w_c f_t / s0_q, p's of w_c f_t / s0_p (s0 the
       // law's peak, law_peak()), which differ where particles start below f_t.
-      const double shared = F.crack_opening[*q] *
-                            law_peak(P.onset_stress[p], P.strength[p]) /
-                            law_peak(P.onset_stress[*q], P.strength[*q]);
+      const double shared =
+          F.crack_opening[*q] * peak_p / law_peak(P.onset_stress[*q], P.strength[*q]);
       if (shared <= band)
         continue;
       if (!have_normal) // only once a neighbour is more open than p
         n = crack_direction(P, p), have_normal = true;
       const Tensor<1, dim> d = P.position[*q] - P.position[p];
       const double along     = d * n;
-      if (std::abs(along) <= along_max && d.norm_square() - along * along <= off2)
+      // The line reaches as far as the row's radius, not its skin.
+      const double d2 = d.norm_square();
+      if (std::abs(along) <= along_max && d2 - along * along <= off2 && d2 <= within2)
         band = std::min(1.0, shared);
     }
     return band;
@@ -409,8 +421,13 @@ private:
     double lo = 0, hi = w_end;
     for (int i = 0; i < 60; ++i)
     {
-      const double mid       = 0.5 * (lo + hi);
-      (F(mid) > 0 ? hi : lo) = mid;
+      const double mid = 0.5 * (lo + hi);
+      double &bound    = F(mid) > 0 ? hi : lo;
+      // Once a halving moves neither end (they are neighbouring doubles), every later
+      // one repeats it.
+      if (bound == mid)
+        break;
+      bound = mid;
     }
     return 0.5 * (lo + hi);
   }
@@ -509,6 +526,8 @@ public:
 
   std::string name() const override { return "eigenerosion"; }
   double epsilon(const double h) const override { return C_eps * h; }
+  /// The mean keeps the neighbours within the particle's own epsilon.
+  bool reads_rows_with_skin() const override { return true; }
   /// The volume-weighted mean density exceeds G_c / (factor eps) only if some
   /// neighbour's does; the largest eps gives the lowest bound.
   FractureTrigger trigger(const double h_largest) const override

@@ -263,6 +263,13 @@ void FractureCoupling<dim>::prepare(ParticleStore<dim> &store)
         bound         = std::min(bound, t.threshold * strength_floor[m]);
       }
     }
+  // Rows kept across steps where every model tests the distances itself. The skin
+  // is a tenth of the radius: the rows are longer by about a fifth (2D) or a third
+  // (3D), and are made anew once a particle has moved a twentieth of the radius.
+  bool skin_rows = any_model;
+  for (const auto &f : models)
+    skin_rows = skin_rows && (!f || f->reads_rows_with_skin());
+  neighbours.keep_lists(skin_rows ? skin_fraction * radius : 0);
   fields.max_principal_stress.resize(n);
   fields.energy_density.resize(n);
   fields.crack_opening.resize(n);
@@ -436,6 +443,11 @@ void FractureCoupling<dim>::add_statistics(const ParticleStore<dim> &store,
   // step.
   if (updates > 0 && store.size() > 0)
     results["fracture_neighbourhood_share"] = rows_built / (updates * store.size());
+  // How often the rows were searched anew (1 = every step; less where they are kept
+  // with a skin).
+  if (updates > 0)
+    results["fracture_neighbour_searches_per_step"] =
+        double(neighbours.n_list_builds()) / updates;
 }
 
 template class FractureCoupling<2>;

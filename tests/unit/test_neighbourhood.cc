@@ -204,3 +204,159 @@ TEST(Neighbourhood, BuildTimePerParticle)
             << double(nb.n_pairs()) / x.size() << " neighbours per particle" << std::endl;
   EXPECT_GT(nb.n_pairs(), 40 * x.size());
 }
+
+namespace
+{
+/**
+ * Particles that drift a little each step and are sorted by cell again, as in a run:
+ * rows kept with a skin, once cut to the radius, equal those of a fresh build, on
+ * either side of a crack, with seeds that come and go; and the lists are made anew
+ * only now and then.
+ */
+template <int dim>
+void check_kept_lists_against_fresh_builds(const bool with_crack)
+{
+  std::mt19937 rng(5 + dim + 10 * with_crack);
+  std::uniform_real_distribution<double> u(0, 1);
+  const unsigned int n = dim == 2 ? 3000 : 2500;
+  const double radius  = dim == 2 ? 0.04 : 0.12;
+  std::vector<Point<dim>> x(n);
+  std::vector<std::uint16_t> body(n);
+  for (unsigned int p = 0; p < n; ++p)
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      x[p][d] = 0.1 + 0.8 * u(rng);
+    body[p] = x[p][0] < 0.3 ? 1 : 0;
+  }
+  BackgroundGrid<dim> grid;
+  // Room for the drift: two particles of a body without rows at corners of the unit
+  // cube stretch the grid over it.
+  x.push_back(Point<dim>());
+  x.push_back(Point<dim>());
+  for (unsigned int d = 0; d < dim; ++d)
+    x.back()[d] = 1;
+  body.resize(x.size(), 2);
+  ParticleStore<dim> store = sorted_store(x, body, 0.6 * radius, grid);
+  const std::size_t m      = store.size();
+  // In 2D a straight crack through the middle.
+  const std::vector<std::vector<Point<2>>> crack = {
+      {Point<2>(0.2, 0.5), Point<2>(0.6, 0.5)}};
+  CrackSegmentBins<2> bins;
+  if constexpr (dim == 2)
+    bins.build(crack, radius);
+  const auto separated = [&](const std::size_t p, const std::size_t q)
+  {
+    if constexpr (dim == 2)
+      return bins.separates(store.position[p], store.position[q]);
+    else
+      return false;
+  };
+  const auto may_be_separated = [&](const std::size_t p)
+  {
+    if constexpr (dim == 2)
+      return bins.may_separate(store.position[p]);
+    else
+      return true;
+  };
+  const double skin = 0.1 * radius;
+  Neighbourhood<dim> kept, fresh;
+  kept.keep_lists(skin);
+  std::vector<std::uint8_t> seeds(m);
+  const unsigned int steps = 40;
+  std::size_t compared = 0, cut_rows = 0, reorders = 0;
+  for (unsigned int step = 0; step < steps; ++step)
+  {
+    // Seeds in a patch that widens; rows taken by most particles.
+    for (std::size_t p = 0; p < m; ++p)
+    {
+      double r = 0;
+      for (unsigned int d = 0; d < dim; ++d)
+        r += std::pow(store.position[p][d] - 0.45, 2);
+      const bool seed_here = std::sqrt(r) < 0.1 + 0.002 * step;
+      seeds[p] =
+          (seed_here ? Neighbourhood<dim>::seed : 0) |
+          (store.body_id[p] != 2 && store.id[p] % 20 != 0 ? Neighbourhood<dim>::takes_row
+                                                          : 0);
+    }
+    // A change of order other than a sort (as an exchange between ranks makes): that
+    // build's rows hold the particles within the radius only.
+    const bool exchanged = step == 20;
+    if (exchanged)
+      store.mark_reordered();
+    const std::size_t searches = kept.n_list_builds();
+    if (with_crack)
+    {
+      kept.build(store, grid, radius, separated, &seeds, may_be_separated);
+      fresh.build(store, grid, radius, separated, &seeds, may_be_separated);
+    }
+    else
+    {
+      kept.build(store, grid, radius, {}, &seeds);
+      fresh.build(store, grid, radius, {}, &seeds);
+    }
+    ASSERT_EQ(kept.n_rows(), fresh.n_rows()) << "step " << step;
+    if (exchanged)
+    {
+      EXPECT_EQ(kept.n_list_builds(), searches + 1);
+      EXPECT_EQ(kept.n_pairs(), fresh.n_pairs());
+    }
+    const std::vector<Point<dim>> &y = store.position;
+    for (std::size_t p = 0; p < m; ++p)
+    {
+      ASSERT_EQ(kept.has_row(p), fresh.has_row(p))
+          << "step " << step << " particle " << p;
+      std::vector<std::uint32_t> within;
+      for (auto q = kept.begin(p); q != kept.end(p); ++q)
+      {
+        // Listed within radius + skin, and each of the two moved less than half the
+        // skin since.
+        ASSERT_LE(y[*q].distance(y[p]), radius + 2 * skin);
+        if (y[*q].distance_square(y[p]) <= radius * radius)
+          within.push_back(*q);
+      }
+      ASSERT_TRUE(std::is_sorted(kept.begin(p), kept.end(p)));
+      ASSERT_EQ(within, std::vector<std::uint32_t>(fresh.begin(p), fresh.end(p)))
+          << "step " << step << " particle " << p;
+      compared += fresh.has_row(p);
+      cut_rows += with_crack && fresh.has_row(p) && may_be_separated(p);
+    }
+    // A smooth drift of at most 0.004 radius per step, and every tenth step a jump of
+    // one particle by the skin: the lists must be made anew for each.
+    for (std::size_t p = 0; p < m; ++p)
+      if (store.body_id[p] != 2)
+        for (unsigned int d = 0; d < dim; ++d)
+          store.position[p][d] += 0.004 * radius *
+                                  std::sin(3 * store.position[p][(d + 1) % dim] + d) /
+                                  std::sqrt(dim);
+    if (step % 10 == 9)
+      store.position[m / 2][0] += skin;
+    const std::uint64_t before = store.order_version();
+    lme_mpm_test::sort_by_grid_cells(store, grid);
+    reorders += store.order_version() != before;
+  }
+  std::cout << dim << "D: lists made " << kept.n_list_builds() << " times in " << steps
+            << " steps, " << reorders << " reorders followed or redone" << std::endl;
+  // The drift moves particles across cells: most steps reorder the store.
+  EXPECT_GT(reorders, steps / 2);
+  EXPECT_GT(compared, steps * m / 20);
+  if (with_crack && dim == 2)
+  {
+    EXPECT_GT(cut_rows, 100u);
+  }
+  // Made anew for the jumps and the growing patch, but far from every step.
+  EXPECT_GE(kept.n_list_builds(), 4u);
+  EXPECT_LE(kept.n_list_builds(), steps / 3);
+  EXPECT_EQ(fresh.n_list_builds(), steps);
+}
+} // namespace
+
+TEST(Neighbourhood, KeptListsGiveTheRowsOfAFreshBuild)
+{
+  check_kept_lists_against_fresh_builds<2>(false);
+  check_kept_lists_against_fresh_builds<3>(false);
+}
+
+TEST(Neighbourhood, KeptListsGiveTheRowsOfAFreshBuildAcrossACrack)
+{
+  check_kept_lists_against_fresh_builds<2>(true);
+}

@@ -146,6 +146,8 @@ private:
   std::vector<double> spacing_scratch; ///< room for the reordered spacings
   const RankReductions *ranks = nullptr;
   double radius               = 0; ///< of the neighbourhood search
+  /// The neighbourhood's skin over its radius, where the models allow one.
+  static constexpr double skin_fraction = 0.1;
   /// Without a model that gives no trigger: rows only around the seeds.
   bool seeded_rows = false;
   /// A body's crack band reaches beyond its own cell: softening particles then read

@@ -133,6 +133,14 @@ public:
   /// True if update() scales the strength by ParticleStore::strength (the models that
   /// a 'Strength variability' can apply to).
   virtual bool reads_strength_factors() const { return false; }
+  /**
+   * True if update() keeps, of each row, only the neighbours within its own radius
+   * (at most Neighbourhood::radius()) by testing their distance itself. The coupling
+   * then keeps the rows across steps with a skin (Neighbourhood::keep_lists()): a row
+   * may also hold particles a little beyond the radius. With the default, false, the
+   * rows are made anew every step and hold the particles within the radius only.
+   */
+  virtual bool reads_rows_with_skin() const { return false; }
 };
 
 template <int dim>

@@ -28,6 +28,17 @@ namespace lme_mpm
  * (those where a fracture criterion can trigger) and, among them, to those that take a
  * row (those a model reads): the others get empty rows, and when there is no seed the
  * build costs one scan of the flags.
+ *
+ * With keep_lists(skin), the lists outlive a build, as the Verlet lists of molecular
+ * dynamics do: a listed row holds every particle within radius + skin when the lists
+ * were made, so it holds every particle within the radius until some particle has
+ * moved half the skin. A build then only marks the rows wanted this step; it follows
+ * a reorder of the store through its permutation (ParticleStore::sort_permutation()),
+ * and makes the lists anew when a particle has moved too far or a wanted row has no
+ * list. A store changed otherwise between two builds (particles exchanged between
+ * ranks, added or removed) gets rows without a skin at that build. Its rows then hold
+ * particles up to radius + skin: the reader tests the distance
+ * (FractureModel::reads_rows_with_skin()).
  */
 template <int dim>
 class Neighbourhood
@@ -57,45 +68,102 @@ public:
              const std::vector<std::uint8_t> *seeds                         = nullptr,
              const std::function<bool(std::size_t)> &may_be_separated       = {});
 
+  /**
+   * Keeps the lists across builds with a skin of @p skin (m; 0, the default, makes
+   * every row anew at every build and holds the particles within the radius only).
+   * Builds with an explicit crack's @p separated test make their rows anew whatever
+   * the skin.
+   */
+  void keep_lists(double skin);
+
   /// The number of particles.
-  std::size_t size() const { return offsets.empty() ? 0 : offsets.size() - 1; }
-  /// The neighbours of particle @p p, in increasing order: [begin(p), end(p)).
+  std::size_t size() const { return ends.size(); }
+  /// The neighbours of particle @p p, in increasing order: [begin(p), end(p)). With
+  /// a skin, they may lie up to radius() + skin from p.
   const std::uint32_t *begin(const std::size_t p) const
   {
-    return list.data() + offsets[p];
+    return list.data() + begins[p];
   }
   const std::uint32_t *end(const std::size_t p) const { return list.data() + ends[p]; }
-  /// The total length of the lists.
+  /// The total length of the rows of this build.
   std::size_t n_pairs() const { return pairs; }
+  /// The radius of the last build.
+  double radius() const { return search_radius; }
+  /// How many times the lists were made (every build without a skin).
+  std::size_t n_list_builds() const { return list_builds; }
   /// Whether particle @p p has its row (a row holds the particle itself, so it is
   /// never empty); without seeds every particle has one.
-  bool has_row(const std::size_t p) const { return ends[p] > offsets[p]; }
+  bool has_row(const std::size_t p) const { return ends[p] > begins[p]; }
   /// The number of particles with a row.
   std::size_t n_rows() const { return rows; }
 
 private:
-  /// Flags in `wanted` the particles that take a row and lie within the radius of a
+  /// Flags in @p marked the particles that take a row and lie within @p radius of a
   /// seed; cells that hold no seed are skipped without looking at their particles.
   void mark_rows_near_seeds(const ParticleStore<dim> &store, const CellSearch<dim> &cells,
-                            double radius, const std::vector<std::uint8_t> &seeds);
+                            double radius, const std::vector<std::uint8_t> &seeds,
+                            std::vector<std::uint8_t> &marked);
   /**
-   * Fills the rows of the wanted particles with the neighbours that same(p, q)
-   * accepts, in increasing index. With @p roomy, every row gets room for all the
+   * Fills the rows of the particles flagged in @p which with the neighbours within
+   * @p radius that same(p, q) accepts, in increasing index, into `list` from
+   * @p row_begins to @p row_ends. With @p roomy, every row gets room for all the
    * particles of the cells within the radius, so one pass over the candidates fills it
    * (the distance and crack tests are the cost); otherwise (every particle has a row,
    * and that room would be about 2 (2D) or 3.2 (3D) times the rows, at a radius of 1.5
    * cells and 2 particles per cell direction) a counting pass sizes them exactly.
    */
   template <class Same>
-  void fill_rows(const ParticleStore<dim> &store, const CellSearch<dim> &cells,
-                 double radius, const Same &same, bool roomy);
+  void
+  fill_rows(const ParticleStore<dim> &store, const CellSearch<dim> &cells, double radius,
+            const Same &same, bool roomy, const std::vector<std::uint8_t> &which,
+            std::vector<std::size_t> &row_begins, std::vector<std::size_t> &row_ends);
+  /// Calls fill_rows() with the body and crack tests this build needs.
+  void fill_rows_of(const ParticleStore<dim> &store, const CellSearch<dim> &cells,
+                    double radius, bool roomy, const std::vector<std::uint8_t> &which,
+                    std::vector<std::size_t> &row_begins,
+                    std::vector<std::size_t> &row_ends,
+                    const std::function<bool(std::size_t, std::size_t)> &separated);
+  /// Flags in `cut` the wanted rows whose pairs the crack test must see (all of them
+  /// without @p may_be_separated; none without @p separated).
+  void mark_cut_rows(const std::function<bool(std::size_t, std::size_t)> &separated,
+                     const std::function<bool(std::size_t)> &may_be_separated);
+  /// With a skin: carries the lists through the store's last reorder, or drops them
+  /// when that cannot be done.
+  void follow_order(const ParticleStore<dim> &store);
+  /// With a skin: whether the kept lists hold every wanted row of this build.
+  bool lists_hold(const ParticleStore<dim> &store, double radius) const;
+  /// With a skin: the rows of this build from the kept lists; those an explicit crack
+  /// may cut are copied behind the lists without the pairs it separates.
+  void rows_from_lists(const ParticleStore<dim> &store, double radius,
+                       const std::function<bool(std::size_t, std::size_t)> &separated,
+                       const std::function<bool(std::size_t)> &may_be_separated);
 
-  // Row p is list[offsets[p], ends[p]); a row may have room beyond its end.
-  std::vector<std::size_t> offsets, ends;
+  // Row p of this build is list[begins[p], ends[p]); a row may have room beyond its
+  // end.
+  std::vector<std::size_t> begins, ends;
   std::vector<std::uint32_t> list;
+  double search_radius = 0;
   // Scratch, kept between builds.
   std::vector<std::uint8_t> seeded, near_seeds, wanted, cut;
-  std::size_t rows = 0, pairs = 0;
+  std::size_t rows = 0, pairs = 0, list_builds = 0;
+  bool several_bodies = false;
+
+  // Kept lists (skin > 0): the first kept_size entries of `list`, the row of a
+  // `listed` particle p in [list_begins[p], list_ends[p]). They were made at
+  // built_position, for the radius built_radius, without any crack test, and follow
+  // the store's order built_version. Only particles of a body in listed_body enter
+  // them.
+  double skin                 = 0;
+  bool lists_valid            = false;
+  double built_radius         = 0;
+  std::uint64_t built_version = 0;
+  std::size_t kept_size       = 0;
+  /// The store's order_version() at the last build (none yet: the largest value).
+  std::uint64_t seen_version = static_cast<std::uint64_t>(-1);
+  std::vector<std::size_t> list_begins, list_ends;
+  std::vector<std::uint8_t> listed, listed_body;
+  std::vector<Point<dim>> built_position;
+  std::vector<std::uint32_t> inverse;
 };
 } // namespace lme_mpm
 
