@@ -1,5 +1,6 @@
 #include <deal.II/base/symmetric_tensor.h>
 
+#include <lme_mpm/base/bisection.h>
 #include <lme_mpm/base/input.h>
 #include <lme_mpm/base/tensor_tools.h>
 #include <lme_mpm/fracture/fracture_model.h>
@@ -334,14 +335,7 @@ private:
         double lo = others, hi = std::min(w_end, others + a * eps_I);
         if (f(hi) > 0)
           lo = hi;
-        for (int i = 0; i < 60 && hi > lo; ++i)
-        {
-          const double mid = 0.5 * (lo + hi);
-          double &bound    = f(mid) > 0 ? lo : hi;
-          if (bound == mid) // neighbouring doubles: every later halving repeats this
-            break;
-          bound = mid;
-        }
+        bisect(lo, hi, 60, [&](const double x) { return f(x) > 0; });
         w = 0.5 * (lo + hi);
       }
     }
@@ -419,16 +413,7 @@ private:
     if (F(w_end) <= 0)
       return w_end;
     double lo = 0, hi = w_end;
-    for (int i = 0; i < 60; ++i)
-    {
-      const double mid = 0.5 * (lo + hi);
-      double &bound    = F(mid) > 0 ? hi : lo;
-      // Once a halving moves neither end (they are neighbouring doubles), every later
-      // one repeats it.
-      if (bound == mid)
-        break;
-      bound = mid;
-    }
+    bisect(lo, hi, 60, [&](const double x) { return !(F(x) > 0); });
     return 0.5 * (lo + hi);
   }
 

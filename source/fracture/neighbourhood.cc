@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 
 namespace lme_mpm
@@ -105,11 +106,28 @@ void Neighbourhood<dim>::build(
     fill_rows_of(store, cells, radius, seeds != nullptr, wanted, begins, ends, separated);
     ++list_builds;
   }
-  for (std::size_t p = 0; p < n; ++p)
+  // Integer counts: the sum's order does not matter.
+  struct Counts
   {
-    rows += wanted[p];
-    pairs += ends[p] - begins[p];
-  }
+    std::size_t rows = 0, pairs = 0;
+    Counts &operator+=(const Counts &o)
+    {
+      rows += o.rows, pairs += o.pairs;
+      return *this;
+    }
+  };
+  const Counts counts =
+      parallel::deterministic_sum<Counts>(n,
+                                          [&](const std::size_t b, const std::size_t e)
+                                          {
+                                            Counts c;
+                                            for (std::size_t p = b; p < e; ++p)
+                                              c.rows += wanted[p],
+                                                  c.pairs += ends[p] - begins[p];
+                                            return c;
+                                          });
+  rows  = counts.rows;
+  pairs = counts.pairs;
 }
 
 template <int dim>
@@ -194,21 +212,30 @@ void Neighbourhood<dim>::follow_order(const ParticleStore<dim> &store)
     lists_valid = false;
     return;
   }
+  // One parallel pass: the inverse, and each particle's row and build position moved
+  // with it (into buffers kept between builds).
   inverse.resize(n);
-  for (std::size_t q = 0; q < n; ++q)
-    inverse[from[q]] = static_cast<std::uint32_t>(q);
-  // Each particle's row and build position move with it ...
-  const auto permute = [&](auto &v)
-  {
-    auto moved = v;
-    for (std::size_t q = 0; q < n; ++q)
-      moved[q] = v[from[q]];
-    v.swap(moved);
-  };
-  permute(list_begins);
-  permute(list_ends);
-  permute(listed);
-  permute(built_position);
+  moved_begins.resize(n);
+  moved_ends.resize(n);
+  moved_listed.resize(n);
+  moved_position.resize(n);
+  parallel::for_range(n,
+                      [&](const std::size_t b, const std::size_t e)
+                      {
+                        for (std::size_t q = b; q < e; ++q)
+                        {
+                          const std::uint32_t f = from[q];
+                          inverse[f]            = static_cast<std::uint32_t>(q);
+                          moved_begins[q]       = list_begins[f];
+                          moved_ends[q]         = list_ends[f];
+                          moved_listed[q]       = listed[f];
+                          moved_position[q]     = built_position[f];
+                        }
+                      });
+  list_begins.swap(moved_begins);
+  list_ends.swap(moved_ends);
+  listed.swap(moved_listed);
+  built_position.swap(moved_position);
   // ... and the rows name the new places, in increasing order again. The sort keeps
   // the order of the particles within each cell, so a row is out of order only where
   // a particle changed its cell: insertion sort, about linear.
@@ -249,12 +276,19 @@ bool Neighbourhood<dim>::lists_hold(const ParticleStore<dim> &store,
   const double limit                     = 0.49 * skin * 0.49 * skin;
   const std::vector<Point<dim>> &x       = store.position;
   const std::vector<std::uint16_t> &body = store.body_id;
-  bool hold                              = true;
-  for (std::size_t p = 0; p < n && hold; ++p)
-    hold = (!wanted[p] || listed[p]) &&
-           (body[p] >= listed_body.size() || !listed_body[body[p]] ||
-            x[p].distance_square(built_position[p]) <= limit);
-  return hold;
+  std::atomic<bool> hold                 = true;
+  parallel::for_range(n,
+                      [&](const std::size_t b, const std::size_t e)
+                      {
+                        bool h = hold.load(std::memory_order_relaxed);
+                        for (std::size_t p = b; p < e && h; ++p)
+                          h = (!wanted[p] || listed[p]) &&
+                              (body[p] >= listed_body.size() || !listed_body[body[p]] ||
+                               x[p].distance_square(built_position[p]) <= limit);
+                        if (!h)
+                          hold.store(false, std::memory_order_relaxed);
+                      });
+  return hold.load();
 }
 
 template <int dim>

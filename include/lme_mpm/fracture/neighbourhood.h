@@ -164,6 +164,10 @@ private:
   std::vector<std::uint8_t> listed, listed_body;
   std::vector<Point<dim>> built_position;
   std::vector<std::uint32_t> inverse;
+  // Scratch of follow_order(), kept between builds.
+  std::vector<std::size_t> moved_begins, moved_ends;
+  std::vector<std::uint8_t> moved_listed;
+  std::vector<Point<dim>> moved_position;
 };
 } // namespace lme_mpm
 

@@ -27,7 +27,8 @@ class SofteningLaw
 public:
   virtual ~SofteningLaw()          = default;
   virtual std::string name() const = 0;
-  /// g(w) = sigma / f_t.
+  /// g(w) = sigma / f_t. The opening solves ask it at more openings than they keep
+  /// (bisect()), so it must depend on @p w alone.
   virtual double traction_ratio(double w) const = 0;
   /// Opening where the traction vanishes (an unbounded law stops at g = 1e-3).
   virtual double critical_opening() const = 0;
