@@ -139,6 +139,12 @@ public:
   {
     return std::max(C_eps, measured_band ? band_cells : 0.0) * h;
   }
+  /// The sums reach search_radius(h); band_opening()'s line reaches (reach + 0.1) h
+  /// along the crack direction and h / 4 off it, within (reach + 0.35) h.
+  double row_reach(const double h, const double band_reach_cells) const override
+  {
+    return std::max(search_radius(h), (band_reach_cells + 0.35) * h);
+  }
   /// The mass-weighted mean exceeds f_t only if some neighbour's stress does (failed
   /// neighbours count with zero). The margin covers the rounding of the sums.
   FractureTrigger trigger(double) const override
@@ -513,6 +519,7 @@ public:
   double epsilon(const double h) const override { return C_eps * h; }
   /// The mean keeps the neighbours within the particle's own epsilon.
   bool reads_rows_with_skin() const override { return true; }
+  double row_reach(const double h, double) const override { return epsilon(h); }
   /// The volume-weighted mean density exceeds G_c / (factor eps) only if some
   /// neighbour's does; the largest eps gives the lowest bound.
   FractureTrigger trigger(const double h_largest) const override

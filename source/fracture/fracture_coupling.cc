@@ -120,6 +120,8 @@ void FractureCoupling<dim>::set_crack_band(const ShapeFunction<dim> &functions)
         fields.band_reach.push_back(band.reach_cells);
   shares_openings = std::any_of(fields.band_reach.begin(), fields.band_reach.end(),
                                 [](const double r) { return r > 0; });
+  // The rows' reaches depend on the bands: the next prepare() finds them anew.
+  prepared_size = unprepared;
 }
 
 template <int dim>
@@ -270,6 +272,7 @@ void FractureCoupling<dim>::prepare(ParticleStore<dim> &store)
   for (const auto &f : models)
     skin_rows = skin_rows && (!f || f->reads_rows_with_skin());
   neighbours.keep_lists(skin_rows ? skin_fraction * radius : 0);
+  update_row_reaches(store);
   fields.max_principal_stress.resize(n);
   fields.energy_density.resize(n);
   fields.crack_opening.resize(n);
@@ -280,6 +283,49 @@ void FractureCoupling<dim>::prepare(ParticleStore<dim> &store)
   seeds.resize(n);
   prepared_size    = n;
   prepared_version = store.order_version();
+}
+
+template <int dim>
+void FractureCoupling<dim>::update_row_reaches(const ParticleStore<dim> &store)
+{
+  // On a graded grid the rows are searched to the reach of the widest cell; a
+  // particle in a fine cell reads only its own (a quarter of the row at half the
+  // spacing in 2D). Each row is cut to it where every model says how far it reads.
+  bool cut = !uniform_grid && any_model;
+  for (const auto &f : models)
+    cut = cut && (!f || std::isfinite(f->row_reach(grid->min_spacing(), 0)));
+  if (!cut)
+  {
+    row_reaches.clear();
+    return;
+  }
+  const std::size_t n = store.size();
+  row_reaches.resize(n);
+  parallel::for_range(
+      n,
+      [&](const std::size_t b, const std::size_t e)
+      {
+        // Neighbours in the store mostly share material, body and cell size: one
+        // model call per change.
+        unsigned int last_material = static_cast<unsigned int>(-1),
+                     last_body     = static_cast<unsigned int>(-1);
+        double last_h = -1, last_reach = radius;
+        for (std::size_t p = b; p < e; ++p)
+        {
+          const unsigned int m = store.material_id[p], body = store.body_id[p];
+          const double h = fields.spacing_of(p, grid->min_spacing());
+          if (m != last_material || body != last_body || h != last_h)
+          {
+            // A slack of 1e-12 over the model's own distance tests (rounding of the
+            // products); no model: the row (never taken) keeps the radius.
+            last_reach = models[m] ? models[m]->row_reach(h, fields.band_reach_of(body)) *
+                                         (1 + 1e-12)
+                                   : radius;
+            last_material = m, last_body = body, last_h = h;
+          }
+          row_reaches[p] = last_reach;
+        }
+      });
 }
 
 template <int dim>
@@ -388,6 +434,9 @@ void FractureCoupling<dim>::update(ParticleStore<dim> &store, const CrackSet<dim
   // must not enter its onset or energy averages; nor from the other face of an
   // explicit crack. Rows only where a model can act (none before fracture starts).
   const std::vector<std::uint8_t> *row_seeds = seeded_rows ? &seeds : nullptr;
+  // Named at each build, so that the neighbourhood never keeps a pointer into a
+  // coupling that has since been copied or moved.
+  neighbours.cut_rows_to(row_reaches.empty() ? nullptr : &row_reaches);
   if (cracks && !cracks->empty())
   {
     crack_bins.build(cracks->polylines(), radius);

@@ -83,7 +83,7 @@ void Neighbourhood<dim>::build(
       listed.assign(n, 1);
       if (seeds)
         mark_rows_near_seeds(store, cells, 2 * radius, *seeds, listed);
-      fill_rows_of(store, cells, radius + skin, seeds != nullptr, listed, list_begins,
+      fill_rows_of(store, cells, radius, skin, seeds != nullptr, listed, list_begins,
                    list_ends, {});
       kept_size      = list.size();
       built_position = store.position;
@@ -103,7 +103,8 @@ void Neighbourhood<dim>::build(
     // The rows whose pairs the crack test must see: one question per row, where most
     // rows lie far from every crack.
     mark_cut_rows(separated, may_be_separated);
-    fill_rows_of(store, cells, radius, seeds != nullptr, wanted, begins, ends, separated);
+    fill_rows_of(store, cells, radius, 0, seeds != nullptr, wanted, begins, ends,
+                 separated);
     ++list_builds;
   }
   // Integer counts: the sum's order does not matter.
@@ -174,7 +175,6 @@ void Neighbourhood<dim>::rows_from_lists(
   // The pairs within the radius that the crack leaves, as a build without a skin
   // finds them (same tests, same order).
   const std::vector<Point<dim>> &x = store.position;
-  const double r2                  = radius * radius;
   parallel::for_range(n,
                       [&](const std::size_t b, const std::size_t e)
                       {
@@ -182,6 +182,7 @@ void Neighbourhood<dim>::rows_from_lists(
                         {
                           if (!cut[p])
                             continue;
+                          const double r = row_radius(p, radius), r2 = r * r;
                           std::size_t k = begins[p];
                           for (std::size_t i = list_begins[p]; i < list_ends[p]; ++i)
                           {
@@ -294,7 +295,7 @@ bool Neighbourhood<dim>::lists_hold(const ParticleStore<dim> &store,
 template <int dim>
 void Neighbourhood<dim>::fill_rows_of(
     const ParticleStore<dim> &store, const CellSearch<dim> &cells, const double radius,
-    const bool roomy, const std::vector<std::uint8_t> &which,
+    const double skin_added, const bool roomy, const std::vector<std::uint8_t> &which,
     std::vector<std::size_t> &row_begins, std::vector<std::size_t> &row_ends,
     const std::function<bool(std::size_t, std::size_t)> &separated)
 {
@@ -303,25 +304,25 @@ void Neighbourhood<dim>::fill_rows_of(
   const std::vector<std::uint16_t> &body = store.body_id;
   if (separated && several_bodies)
     fill_rows(
-        store, cells, radius,
+        store, cells, radius, skin_added,
         [&](const std::size_t p, const std::uint32_t q)
         { return body[p] == body[q] && (p == q || !cut[p] || !separated(p, q)); },
         roomy, which, row_begins, row_ends);
   else if (separated)
     fill_rows(
-        store, cells, radius,
+        store, cells, radius, skin_added,
         [&](const std::size_t p, const std::uint32_t q)
         { return p == q || !cut[p] || !separated(p, q); },
         roomy, which, row_begins, row_ends);
   else if (several_bodies)
     fill_rows(
-        store, cells, radius,
+        store, cells, radius, skin_added,
         [&](const std::size_t p, const std::uint32_t q) { return body[p] == body[q]; },
         roomy, which, row_begins, row_ends);
   else
     fill_rows(
-        store, cells, radius, [](std::size_t, std::uint32_t) { return true; }, roomy,
-        which, row_begins, row_ends);
+        store, cells, radius, skin_added, [](std::size_t, std::uint32_t) { return true; },
+        roomy, which, row_begins, row_ends);
 }
 
 template <int dim>
@@ -338,14 +339,23 @@ void Neighbourhood<dim>::mark_rows_near_seeds(const ParticleStore<dim> &store,
   const double r2                         = radius * radius;
   // The cells that hold a seed, and the cells within the radius of one: a particle
   // elsewhere has no seed near, which most particles learn from one look at their
-  // cell's flag (a seeded cell's reach is searched from its own box, once).
-  seeded.assign(n_cells, 0);
+  // cell's flag (a seeded cell's reach is searched from its own box, once). The seeds'
+  // positions are gathered by cell (the store is sorted by cell), so that the search
+  // reads the seeds alone.
   near_seeds.assign(n_cells, 0);
+  seed_begin.assign(n_cells + 1, 0);
+  seed_position.clear();
   for (std::size_t p = 0; p < n; ++p)
-    seeded[store.cell[p]] |= seeds[p] & seed;
+    if (seeds[p] & seed)
+    {
+      ++seed_begin[store.cell[p] + 1];
+      seed_position.push_back(x[p]);
+    }
+  for (std::size_t c = 0; c < n_cells; ++c)
+    seed_begin[c + 1] += seed_begin[c];
   typename CellSearch<dim>::Scratch scratch;
   for (std::size_t c = 0; c < n_cells; ++c)
-    if (seeded[c])
+    if (seed_begin[c + 1] > seed_begin[c])
     {
       const BoundingBox<dim> box = cells.box(c);
       cells.for_cells_near(box.center(),
@@ -363,15 +373,16 @@ void Neighbourhood<dim>::mark_rows_near_seeds(const ParticleStore<dim> &store,
         {
           // A seed is within the radius of itself.
           bool near = (seeds[p] & takes_row) && (seeds[p] & seed);
+          // The first seed within the radius answers.
           if ((seeds[p] & takes_row) && !near && near_seeds[store.cell[p]])
-            cells.for_cells_near(
+            near = cells.for_cells_near(
                 x[p], radius, scratch,
                 [&](const std::size_t c)
                 {
-                  if (near || !seeded[c])
-                    return;
-                  for (std::size_t s = in_cell[c]; s < in_cell[c + 1] && !near; ++s)
-                    near = (seeds[s] & seed) && x[s].distance_square(x[p]) <= r2;
+                  for (std::size_t s = seed_begin[c]; s < seed_begin[c + 1]; ++s)
+                    if (seed_position[s].distance_square(x[p]) <= r2)
+                      return true;
+                  return false;
                 });
           marked[p] = near;
         }
@@ -382,7 +393,8 @@ template <int dim>
 template <class Same>
 void Neighbourhood<dim>::fill_rows(const ParticleStore<dim> &store,
                                    const CellSearch<dim> &cells, const double radius,
-                                   const Same &same, const bool roomy,
+                                   const double skin_added, const Same &same,
+                                   const bool roomy,
                                    const std::vector<std::uint8_t> &which,
                                    std::vector<std::size_t> &row_begins,
                                    std::vector<std::size_t> &row_ends)
@@ -390,14 +402,17 @@ void Neighbourhood<dim>::fill_rows(const ParticleStore<dim> &store,
   const std::size_t n                     = store.size();
   const std::vector<Point<dim>> &x        = store.position;
   const std::vector<std::size_t> &in_cell = store.cell_offsets();
-  const double r2                         = radius * radius;
+  // Each row to its particle's reach (cut_rows_to()) plus the skin.
+  const auto reach = [&](const std::size_t p)
+  { return row_radius(p, radius) + skin_added; };
   // Visits the neighbours of p in increasing cell index, and within a cell in
   // increasing particle index: increasing particle index over all, as the store is
-  // sorted by cell. f(q) is called for each q within the radius that same accepts.
+  // sorted by cell. f(q) is called for each q within the reach that same accepts.
   const auto for_neighbours =
       [&](const std::size_t p, typename CellSearch<dim>::Scratch &scratch, auto &&f)
   {
-    cells.for_cells_near(x[p], radius, scratch,
+    const double r = reach(p), r2 = r * r;
+    cells.for_cells_near(x[p], r, scratch,
                          [&](const std::size_t c)
                          {
                            for (std::size_t s = in_cell[c]; s < in_cell[c + 1]; ++s)
@@ -415,7 +430,7 @@ void Neighbourhood<dim>::fill_rows(const ParticleStore<dim> &store,
                         {
                           std::size_t c = 0;
                           if (which[p] && roomy)
-                            cells.for_cells_near(x[p], radius, scratch,
+                            cells.for_cells_near(x[p], reach(p), scratch,
                                                  [&](const std::size_t k)
                                                  { c += in_cell[k + 1] - in_cell[k]; });
                           else if (which[p])

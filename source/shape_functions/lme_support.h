@@ -254,6 +254,12 @@ private:
     const auto &w1d = scratch.w1d;
     unsigned int n  = 0;
     Tensor<1, dim> yI;
+    // The outputs through local pointers and the extent in locals: written through
+    // the references, every kept node would reload them (they might alias).
+    double *const y0 = scratch.y0.data(), *const y1 = scratch.y1.data(),
+                  *const a = scratch.a.data(), *const wI = scratch.w.data();
+    Tensor<1, dim> *const y = scratch.y.data();
+    Tensor<1, dim> lowest = y_min, highest = y_max;
     const auto keep = [&](const unsigned int node, const Tensor<1, dim> &yn,
                           const double q, const double w)
     {
@@ -263,20 +269,24 @@ private:
       nodes[n] = node;
       // 2D keeps the offsets apart only (the Chebyshev correction copies them).
       if constexpr (dim == 2)
-        scratch.y0[n] = yn[0], scratch.y1[n] = yn[1];
+        y0[n] = yn[0], y1[n] = yn[1];
       else
-        scratch.y[n] = yn;
-      scratch.a[n] = -gamma * q;
-      scratch.w[n] = w;
+        y[n] = yn;
+      a[n]  = -gamma * q;
+      wI[n] = w;
       for (unsigned int d = 0; d < dim; ++d)
-        y_min[d] = std::min(y_min[d], yn[d]), y_max[d] = std::max(y_max[d], yn[d]);
+        lowest[d] = std::min(lowest[d], yn[d]), highest[d] = std::max(highest[d], yn[d]);
       ++n;
     };
+    // The index box's offsets and weights through local pointers too.
+    std::array<const double *, dim> u, wd;
+    for (unsigned int d = 0; d < dim; ++d)
+      u[d] = y1d[d].data(), wd[d] = w1d[d].data();
     // Weight of a node from those of its rows: the largest, as h_I is the smallest.
     const auto weight = [&](const unsigned int d, const unsigned int k)
     {
       if constexpr (Graded)
-        return w1d[d][k];
+        return wd[d][k];
       else
         return 1.0;
     };
@@ -284,17 +294,17 @@ private:
     {
       for (unsigned int j = 0; j < count[1]; ++j)
       {
-        const double qj = y1d[1][j] * y1d[1][j];
+        const double qj = u[1][j] * u[1][j];
         if (qj * weight(1, j) > R2)
           continue;
         const unsigned int row = (first[1] + j) * grid.node_stride(1) + first[0];
         for (unsigned int i = 0; i < count[0]; ++i)
         {
           const double w = std::max(weight(0, i), weight(1, j));
-          const double q = w * (y1d[0][i] * y1d[0][i] + qj);
+          const double q = w * (u[0][i] * u[0][i] + qj);
           if (q <= R2)
           {
-            yI[0] = y1d[0][i], yI[1] = y1d[1][j];
+            yI[0] = u[0][i], yI[1] = u[1][j];
             keep(row + i, yI, q, w);
           }
         }
@@ -304,12 +314,12 @@ private:
     {
       for (unsigned int k = 0; k < count[2]; ++k)
       {
-        const double qk = y1d[2][k] * y1d[2][k];
+        const double qk = u[2][k] * u[2][k];
         if (qk * weight(2, k) > R2)
           continue;
         for (unsigned int j = 0; j < count[1]; ++j)
         {
-          const double qj  = y1d[1][j] * y1d[1][j] + qk;
+          const double qj  = u[1][j] * u[1][j] + qk;
           const double wjk = std::max(weight(1, j), weight(2, k));
           if (qj * wjk > R2)
             continue;
@@ -318,16 +328,17 @@ private:
           for (unsigned int i = 0; i < count[0]; ++i)
           {
             const double w = std::max(weight(0, i), wjk);
-            const double q = w * (y1d[0][i] * y1d[0][i] + qj);
+            const double q = w * (u[0][i] * u[0][i] + qj);
             if (q <= R2)
             {
-              yI[0] = y1d[0][i], yI[1] = y1d[1][j], yI[2] = y1d[2][k];
+              yI[0] = u[0][i], yI[1] = u[1][j], yI[2] = u[2][k];
               keep(row + i, yI, q, w);
             }
           }
         }
       }
     }
+    y_min = lowest, y_max = highest;
     return n;
   }
 
@@ -376,13 +387,19 @@ private:
       first[d] = i_lo;
       count[d] = i_hi + 1 - i_lo;
       Assert(count[d] <= max_box_1d, ExcInternalError());
+      // Through local pointers: a store through the vectors might alias their sources.
+      double *const yd = y1d[d].data(), *const wd = w1d[d].data();
+      const double *const cd = c.data() + i_lo;
+      const double xd        = x[d];
       for (unsigned int k = 0; k < count[d]; ++k)
+        yd[k] = (xd - cd[k]) * inv_h;
+      if constexpr (Graded)
       {
-        y1d[d][k] = (x[d] - c[i_lo + k]) * inv_h;
-        if constexpr (Graded)
+        const double *const hd = node_h[d].data() + i_lo;
+        for (unsigned int k = 0; k < count[d]; ++k)
         {
-          const double r = h / node_h[d][i_lo + k];
-          w1d[d][k]      = r * r;
+          const double r = h / hd[k];
+          wd[k]          = r * r;
         }
       }
     }

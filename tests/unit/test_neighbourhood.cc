@@ -15,6 +15,7 @@
 #include "test_helpers.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -211,12 +212,15 @@ namespace
  * Particles that drift a little each step and are sorted by cell again, as in a run:
  * rows kept with a skin, once cut to the radius, equal those of a fresh build, on
  * either side of a crack, with seeds that come and go; and the lists are made anew
- * only now and then.
+ * only now and then. @p with_reaches: the kept rows are cut to each particle's own
+ * reach (Neighbourhood::cut_rows_to(), some beyond the radius), and equal the fresh
+ * rows cut to it.
  */
 template <int dim>
-void check_kept_lists_against_fresh_builds(const bool with_crack)
+void check_kept_lists_against_fresh_builds(const bool with_crack,
+                                           const bool with_reaches = false)
 {
-  std::mt19937 rng(5 + dim + 10 * with_crack);
+  std::mt19937 rng(5 + dim + 10 * with_crack + 100 * with_reaches);
   std::uniform_real_distribution<double> u(0, 1);
   const unsigned int n = dim == 2 ? 3000 : 2500;
   const double radius  = dim == 2 ? 0.04 : 0.12;
@@ -262,10 +266,17 @@ void check_kept_lists_against_fresh_builds(const bool with_crack)
   Neighbourhood<dim> kept, fresh;
   kept.keep_lists(skin);
   std::vector<std::uint8_t> seeds(m);
+  // Reaches that belong to the particles (by id): a half, four fifths and 1.3 times
+  // the radius.
+  std::vector<double> reach(m);
+  if (with_reaches)
+    kept.cut_rows_to(&reach);
   const unsigned int steps = 40;
-  std::size_t compared = 0, cut_rows = 0, reorders = 0;
+  std::size_t compared = 0, cut_rows = 0, reorders = 0, kept_pairs = 0, fresh_pairs = 0;
   for (unsigned int step = 0; step < steps; ++step)
   {
+    for (std::size_t p = 0; p < m; ++p)
+      reach[p] = radius * std::array<double, 3>{{0.5, 0.8, 1.3}}[store.id[p] % 3];
     // Seeds in a patch that widens; rows taken by most particles.
     for (std::size_t p = 0; p < m; ++p)
     {
@@ -295,31 +306,38 @@ void check_kept_lists_against_fresh_builds(const bool with_crack)
       fresh.build(store, grid, radius, {}, &seeds);
     }
     ASSERT_EQ(kept.n_rows(), fresh.n_rows()) << "step " << step;
+    kept_pairs += kept.n_pairs();
+    fresh_pairs += fresh.n_pairs();
     if (exchanged)
-    {
       EXPECT_EQ(kept.n_list_builds(), searches + 1);
-      EXPECT_EQ(kept.n_pairs(), fresh.n_pairs());
-    }
     const std::vector<Point<dim>> &y = store.position;
+    std::size_t fresh_within_reach   = 0;
     for (std::size_t p = 0; p < m; ++p)
     {
       ASSERT_EQ(kept.has_row(p), fresh.has_row(p))
           << "step " << step << " particle " << p;
-      std::vector<std::uint32_t> within;
+      const double r = with_reaches ? std::min(radius, reach[p]) : radius;
+      std::vector<std::uint32_t> within, fresh_within;
       for (auto q = kept.begin(p); q != kept.end(p); ++q)
       {
-        // Listed within radius + skin, and each of the two moved less than half the
-        // skin since.
-        ASSERT_LE(y[*q].distance(y[p]), radius + 2 * skin);
-        if (y[*q].distance_square(y[p]) <= radius * radius)
+        // Listed within the reach + skin, and each of the two moved less than half
+        // the skin since.
+        ASSERT_LE(y[*q].distance(y[p]), r + 2 * skin);
+        if (y[*q].distance_square(y[p]) <= r * r)
           within.push_back(*q);
       }
+      for (auto q = fresh.begin(p); q != fresh.end(p); ++q)
+        if (y[*q].distance_square(y[p]) <= r * r)
+          fresh_within.push_back(*q);
       ASSERT_TRUE(std::is_sorted(kept.begin(p), kept.end(p)));
-      ASSERT_EQ(within, std::vector<std::uint32_t>(fresh.begin(p), fresh.end(p)))
-          << "step " << step << " particle " << p;
+      ASSERT_EQ(within, fresh_within) << "step " << step << " particle " << p;
+      fresh_within_reach += fresh_within.size();
       compared += fresh.has_row(p);
       cut_rows += with_crack && fresh.has_row(p) && may_be_separated(p);
     }
+    // At the exchange the rows have no skin: exactly the fresh ones cut to the reach.
+    if (exchanged)
+      EXPECT_EQ(kept.n_pairs(), fresh_within_reach);
     // A smooth drift of at most 0.004 radius per step, and every tenth step a jump of
     // one particle by the skin: the lists must be made anew for each.
     for (std::size_t p = 0; p < m; ++p)
@@ -347,6 +365,10 @@ void check_kept_lists_against_fresh_builds(const bool with_crack)
   EXPECT_GE(kept.n_list_builds(), 4u);
   EXPECT_LE(kept.n_list_builds(), steps / 3);
   EXPECT_EQ(fresh.n_list_builds(), steps);
+  // Reaches of a half and four fifths of the radius for two thirds of the rows: the
+  // kept rows, skin and all, are shorter than the fresh ones.
+  if (with_reaches)
+    EXPECT_LT(kept_pairs, 0.8 * fresh_pairs);
 }
 } // namespace
 
@@ -359,4 +381,11 @@ TEST(Neighbourhood, KeptListsGiveTheRowsOfAFreshBuild)
 TEST(Neighbourhood, KeptListsGiveTheRowsOfAFreshBuildAcrossACrack)
 {
   check_kept_lists_against_fresh_builds<2>(true);
+}
+
+TEST(Neighbourhood, RowsCutToEachParticlesReachAreTheFreshRowsCutToIt)
+{
+  check_kept_lists_against_fresh_builds<2>(false, true);
+  check_kept_lists_against_fresh_builds<3>(false, true);
+  check_kept_lists_against_fresh_builds<2>(true, true);
 }

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <type_traits>
 #include <vector>
 
 namespace lme_mpm
@@ -33,12 +34,24 @@ public:
    * Calls f(c) for every cell c whose closed box lies within @p radius of @p x, in
    * increasing c. A cell is skipped only if its box is farther than the radius (with a
    * relative slack of 1e-12 on the squared radius against round-off), so every point
-   * of the grid within the radius lies in a visited cell.
+   * of the grid within the radius lies in a visited cell. An f that returns bool
+   * stops the walk by returning true, and for_cells_near() then returns true (a
+   * question answered by the first cell that has the answer).
    */
   template <class F>
-  void for_cells_near(const Point<dim> &x, const double radius, Scratch &gaps,
+  bool for_cells_near(const Point<dim> &x, const double radius, Scratch &gaps,
                       F &&f) const
   {
+    const auto visit = [&](const std::size_t c)
+    {
+      if constexpr (std::is_same_v<std::invoke_result_t<F &, std::size_t>, bool>)
+        return f(c);
+      else
+      {
+        f(c);
+        return false;
+      }
+    };
     std::array<unsigned int, dim> lo, hi;
     for (unsigned int d = 0; d < dim; ++d)
     {
@@ -68,8 +81,8 @@ public:
         if (gy > limit)
           continue;
         for (unsigned int i = lo[0]; i <= hi[0]; ++i)
-          if (gy + gaps[0][i - lo[0]] <= limit)
-            f(i + nx * j);
+          if (gy + gaps[0][i - lo[0]] <= limit && visit(i + nx * j))
+            return true;
       }
     }
     else
@@ -86,11 +99,12 @@ public:
           if (gyz > limit)
             continue;
           for (unsigned int i = lo[0]; i <= hi[0]; ++i)
-            if (gyz + gaps[0][i - lo[0]] <= limit)
-              f(i + nx * j + nxy * k);
+            if (gyz + gaps[0][i - lo[0]] <= limit && visit(i + nx * j + nxy * k))
+              return true;
         }
       }
     }
+    return false;
   }
 
   /// The closed box of cell @p c.

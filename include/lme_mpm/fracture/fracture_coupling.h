@@ -121,6 +121,8 @@ private:
   /// Fills each particle's cell size (FractureFields::spacing) on a graded grid;
   /// returns the largest (the grid's smallest on a uniform one).
   double update_spacings(const ParticleStore<dim> &store);
+  /// Fills row_reaches from the spacings, or empties it where the rows stay whole.
+  void update_row_reaches(const ParticleStore<dim> &store);
 
   std::vector<std::unique_ptr<FractureModel<dim>>> models; ///< per material, or null
   std::vector<StrengthField<dim>> strength_fields;         ///< per material
@@ -144,6 +146,9 @@ private:
   std::size_t prepared_size               = unprepared;
   std::uint64_t prepared_version          = 0;
   std::vector<double> spacing_scratch; ///< room for the reordered spacings
+  /// Each particle's row reach (FractureModel::row_reach()) on a graded grid where
+  /// every model gives one (Neighbourhood::cut_rows_to()); empty otherwise.
+  std::vector<double> row_reaches;
   const RankReductions *ranks = nullptr;
   double radius               = 0; ///< of the neighbourhood search
   /// The neighbourhood's skin over its radius, where the models allow one.

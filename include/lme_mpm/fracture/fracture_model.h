@@ -9,6 +9,7 @@
 #include <lme_mpm/particles/particle_store.h>
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -141,6 +142,18 @@ public:
    * rows are made anew every step and hold the particles within the radius only.
    */
   virtual bool reads_rows_with_skin() const { return false; }
+  /**
+   * The farthest (m) update() reads in the row of a particle whose own spacing is
+   * @p h, in a body whose crack band reaches @p band_reach_cells cells
+   * (FractureFields::band_reach_of()). On a graded grid the rows are searched to the
+   * radius of the widest cell; a finite answer lets the coupling cut each particle's
+   * row to its own reach, which gives the same sums where the model tests the
+   * distances itself. The default, infinity: every row reaches the search radius.
+   */
+  virtual double row_reach(const double /*h*/, const double /*band_reach_cells*/) const
+  {
+    return std::numeric_limits<double>::infinity();
+  }
 };
 
 template <int dim>

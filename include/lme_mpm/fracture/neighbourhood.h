@@ -76,6 +76,16 @@ public:
    */
   void keep_lists(double skin);
 
+  /**
+   * Cuts the row of each particle p to its own reach, @p radii[p] (at most the
+   * build's radius; the row of a particle whose reach exceeds the radius stays at the
+   * radius), or, with nullptr (the default), leaves every row at the radius. Which
+   * rows are wanted still follows the radius. The reaches belong to the particles:
+   * they must move with them through each sort and not change while the lists are
+   * kept. The vector must outlive the builds that use it.
+   */
+  void cut_rows_to(const std::vector<double> *radii) { row_radii = radii; }
+
   /// The number of particles.
   std::size_t size() const { return ends.size(); }
   /// The neighbours of particle @p p, in increasing order: [begin(p), end(p)). With
@@ -105,7 +115,8 @@ private:
                             std::vector<std::uint8_t> &marked);
   /**
    * Fills the rows of the particles flagged in @p which with the neighbours within
-   * @p radius that same(p, q) accepts, in increasing index, into `list` from
+   * their reach (@p radius, or the particle's own: cut_rows_to()) plus @p skin_added
+   * that same(p, q) accepts, in increasing index, into `list` from
    * @p row_begins to @p row_ends. With @p roomy, every row gets room for all the
    * particles of the cells within the radius, so one pass over the candidates fills it
    * (the distance and crack tests are the cost); otherwise (every particle has a row,
@@ -113,13 +124,15 @@ private:
    * cells and 2 particles per cell direction) a counting pass sizes them exactly.
    */
   template <class Same>
-  void
-  fill_rows(const ParticleStore<dim> &store, const CellSearch<dim> &cells, double radius,
-            const Same &same, bool roomy, const std::vector<std::uint8_t> &which,
-            std::vector<std::size_t> &row_begins, std::vector<std::size_t> &row_ends);
+  void fill_rows(const ParticleStore<dim> &store, const CellSearch<dim> &cells,
+                 double radius, double skin_added, const Same &same, bool roomy,
+                 const std::vector<std::uint8_t> &which,
+                 std::vector<std::size_t> &row_begins,
+                 std::vector<std::size_t> &row_ends);
   /// Calls fill_rows() with the body and crack tests this build needs.
   void fill_rows_of(const ParticleStore<dim> &store, const CellSearch<dim> &cells,
-                    double radius, bool roomy, const std::vector<std::uint8_t> &which,
+                    double radius, double skin_added, bool roomy,
+                    const std::vector<std::uint8_t> &which,
                     std::vector<std::size_t> &row_begins,
                     std::vector<std::size_t> &row_ends,
                     const std::function<bool(std::size_t, std::size_t)> &separated);
@@ -144,7 +157,17 @@ private:
   std::vector<std::uint32_t> list;
   double search_radius = 0;
   // Scratch, kept between builds.
-  std::vector<std::uint8_t> seeded, near_seeds, wanted, cut;
+  std::vector<std::uint8_t> near_seeds, wanted, cut;
+  /// Each particle's own reach (cut_rows_to()), or nullptr.
+  const std::vector<double> *row_radii = nullptr;
+  /// The reach of particle @p p's row at a build of radius @p radius.
+  double row_radius(const std::size_t p, const double radius) const
+  {
+    return row_radii ? std::min(radius, (*row_radii)[p]) : radius;
+  }
+  // The seeds' positions by cell: cell c's in [seed_begin[c], seed_begin[c + 1]).
+  std::vector<std::size_t> seed_begin;
+  std::vector<Point<dim>> seed_position;
   std::size_t rows = 0, pairs = 0, list_builds = 0;
   bool several_bodies = false;
 
