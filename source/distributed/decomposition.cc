@@ -163,11 +163,14 @@ void Decomposition<dim>::exchange(ParticleStore<dim> &particles)
     return grid->locate(particles.position[p], ijk) ? grid->cell_index(ijk) : off_grid;
   };
   const std::size_t n = particles.size();
+  // keep: the owned particles that stay here; cells: where each of them lies (each
+  // particle is located once).
   std::vector<std::uint8_t> keep(n, 0);
-  // The cells of the particles kept, in their order after compact(): each particle
-  // is located once.
-  std::vector<unsigned int> cells;
-  std::vector<std::vector<char>> out(size);
+  std::vector<unsigned int> cells(n, off_grid);
+  out.resize(size);
+  for (auto &o : out)
+    o.clear();
+  bool left = false;
   for (std::size_t p = 0; p < n; ++p)
   {
     if (particles.ghost[p])
@@ -175,24 +178,48 @@ void Decomposition<dim>::exchange(ParticleStore<dim> &particles)
     const unsigned int c = cell_of(p);
     // Off the grid: kept, and the next step stops the run and names it.
     if (c == off_grid || cell_owner[c] == my_rank)
-      keep[p] = 1, cells.push_back(c);
+      keep[p] = 1, cells[p] = c;
     else
+    {
       particle_messages::pack(particles, p, out[cell_owner[c]]);
+      left = true;
+    }
   }
-  particle_messages::compact(particles, keep);
-  particle_messages::unpack(particle_messages::all_to_all(comm, out), particles, 0);
-  for (std::size_t p = cells.size(); p < particles.size(); ++p)
-    cells.push_back(cell_of(p));
+  const std::vector<char> arrived = particle_messages::all_to_all(comm, out);
+  const bool owned_stay           = !left && arrived.empty();
+  if (!owned_stay)
+  {
+    particle_messages::compact(particles, keep);
+    std::size_t kept = 0;
+    for (std::size_t p = 0; p < n; ++p)
+      if (keep[p])
+        cells[kept++] = cells[p];
+    cells.resize(kept);
+    particle_messages::unpack(arrived, particles, 0);
+    for (std::size_t p = cells.size(); p < particles.size(); ++p)
+      cells.push_back(cell_of(p));
+    keep.assign(particles.size(), 1);
+  }
 
   // Ghosts afresh: every owned particle to the ranks whose halo holds its cell.
   for (auto &o : out)
     o.clear();
   for (std::size_t p = 0; p < particles.size(); ++p)
-    if (cells[p] != off_grid)
+    if (keep[p] && cells[p] != off_grid)
       for (std::uint32_t k = ghost_offsets[cells[p]]; k < ghost_offsets[cells[p] + 1];
            ++k)
         particle_messages::pack(particles, p, out[ghost_ranks[k]]);
-  particle_messages::unpack(particle_messages::all_to_all(comm, out), particles, 1);
+  const std::vector<char> ghosts = particle_messages::all_to_all(comm, out);
+  // Where no particle came or went and the halo holds the same particles as before
+  // (most steps), the ghosts are written over in their slots: the store keeps its
+  // order, and the next sort finds it sorted unless a particle changed cells. The
+  // order after the sort is that of appending them (it depends on the particles
+  // only), so this changes no sum.
+  if (owned_stay && particle_messages::refill_ghosts(ghosts, particles, ghost_slots))
+    return;
+  if (owned_stay)
+    particle_messages::compact(particles, keep);
+  particle_messages::unpack(ghosts, particles, 1);
   particles.mark_reordered();
 }
 

@@ -1,7 +1,10 @@
 #include "particle_messages.h"
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
+#include <type_traits>
+#include <utility>
 
 namespace lme_mpm
 {
@@ -66,6 +69,81 @@ void unpack(const std::vector<char> &buffer, ParticleStore<dim> &particles,
 }
 
 template <int dim>
+bool refill_ghosts(const std::vector<char> &buffer, ParticleStore<dim> &particles,
+                   std::vector<std::size_t> &slots)
+{
+  const std::size_t bytes = particles.bytes_per_particle();
+  AssertThrow(buffer.size() % bytes == 0, ExcInternalError());
+  const std::size_t n = buffer.size() / bytes;
+  std::size_t n_held  = 0;
+  for (const std::uint8_t g : particles.ghost)
+    n_held += g;
+  if (n_held != n)
+    return false;
+  // Where the id lies in a packed particle.
+  std::size_t id_at = 0;
+  {
+    bool found = false;
+    for_fields(particles,
+               [&](const auto &field, const std::size_t field_bytes)
+               {
+                 if constexpr (std::is_same_v<std::decay_t<decltype(field)>,
+                                              std::vector<std::uint32_t>>)
+                   found = found || &field == &particles.id;
+                 if (!found)
+                   id_at += field_bytes;
+               });
+    AssertThrow(found, ExcInternalError());
+  }
+  const auto id_of = [&](const std::size_t k)
+  {
+    std::uint32_t id;
+    std::memcpy(&id, buffer.data() + k * bytes + id_at, sizeof(id));
+    return id;
+  };
+  // A particle is sent once to each rank, so the ids that arrive are distinct, and
+  // as many as the ghosts held: if each is a ghost's id, each has one slot. The
+  // slots of the last refill hold unless a sender or this store was reordered.
+  bool same = slots.size() == n;
+  for (std::size_t k = 0; same && k < n; ++k)
+    same = slots[k] < particles.size() && particles.ghost[slots[k]] &&
+           particles.id[slots[k]] == id_of(k);
+  if (!same)
+  {
+    std::vector<std::pair<std::uint32_t, std::size_t>> held;
+    held.reserve(n);
+    for (std::size_t p = 0; p < particles.size(); ++p)
+      if (particles.ghost[p])
+        held.emplace_back(particles.id[p], p);
+    std::sort(held.begin(), held.end());
+    std::vector<std::size_t> found(n);
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const std::uint32_t id = id_of(k);
+      const auto it =
+          std::lower_bound(held.begin(), held.end(), std::make_pair(id, std::size_t(0)));
+      if (it == held.end() || it->first != id)
+        return false;
+      found[k] = it->second;
+    }
+    slots.swap(found);
+  }
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < n; ++k)
+    particles.for_each_field(
+        [&](auto &field)
+        {
+          using T = typename std::decay_t<decltype(field)>::value_type;
+          std::memcpy(&field[slots[k]], buffer.data() + at, sizeof(T));
+          at += sizeof(T);
+        });
+  // The sender's flag (owned there) came with the rest.
+  for (const std::size_t p : slots)
+    particles.ghost[p] = 1;
+  return true;
+}
+
+template <int dim>
 void compact(ParticleStore<dim> &particles, const std::vector<std::uint8_t> &keep)
 {
   const std::size_t n = particles.size();
@@ -120,6 +198,10 @@ template void pack(const ParticleStore<2> &, std::size_t, std::vector<char> &);
 template void pack(const ParticleStore<3> &, std::size_t, std::vector<char> &);
 template void unpack(const std::vector<char> &, ParticleStore<2> &, std::uint8_t);
 template void unpack(const std::vector<char> &, ParticleStore<3> &, std::uint8_t);
+template bool refill_ghosts(const std::vector<char> &, ParticleStore<2> &,
+                            std::vector<std::size_t> &);
+template bool refill_ghosts(const std::vector<char> &, ParticleStore<3> &,
+                            std::vector<std::size_t> &);
 template void compact(ParticleStore<2> &, const std::vector<std::uint8_t> &);
 template void compact(ParticleStore<3> &, const std::vector<std::uint8_t> &);
 } // namespace particle_messages

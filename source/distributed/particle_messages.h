@@ -25,6 +25,16 @@ void pack(const ParticleStore<dim> &particles, std::size_t p, std::vector<char> 
 template <int dim>
 void unpack(const std::vector<char> &buffer, ParticleStore<dim> &particles,
             std::uint8_t ghost);
+/**
+ * Writes the particles in @p buffer over the ghosts of @p particles with the same ids,
+ * if the ghosts are exactly those particles (as many, each id among them); returns
+ * false and changes no particle otherwise. @p slots: where the last refill wrote each
+ * particle of its buffer, tried first (a buffer in the same order, a store not
+ * reordered since); on return true, where this one wrote them.
+ */
+template <int dim>
+bool refill_ghosts(const std::vector<char> &buffer, ParticleStore<dim> &particles,
+                   std::vector<std::size_t> &slots);
 /// Keeps the particles with keep[p] != 0, in order.
 template <int dim>
 void compact(ParticleStore<dim> &particles, const std::vector<std::uint8_t> &keep);

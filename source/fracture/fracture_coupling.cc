@@ -240,9 +240,17 @@ void FractureCoupling<dim>::prepare(ParticleStore<dim> &store)
   // neighbourhood is searched to the widest radius, and each model keeps the
   // neighbours within its particle's own.
   double h_largest = update_spacings(store);
-  // Every rank searches to the radius of all the particles.
+  // Every rank searches to the radius of all the particles. Their spacings are of their
+  // reference positions and none is added or removed, so the largest over the ranks
+  // is found once, at the first prepare() (the same step on every rank): later ones
+  // follow a rank's own reorders, which the other ranks need not share.
   if (ranks)
-    h_largest = ranks->max(h_largest);
+  {
+    if (h_all_ranks < 0)
+      h_all_ranks = ranks->max(h_largest);
+    Assert(h_largest <= h_all_ranks, ExcInternalError());
+    h_largest = h_all_ranks;
+  }
   if (!strengths_assigned)
     assign_strengths(store);
   radius         = 0;

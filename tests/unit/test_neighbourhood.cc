@@ -309,7 +309,9 @@ void check_kept_lists_against_fresh_builds(const bool with_crack,
     kept_pairs += kept.n_pairs();
     fresh_pairs += fresh.n_pairs();
     if (exchanged)
+    {
       EXPECT_EQ(kept.n_list_builds(), searches + 1);
+    }
     const std::vector<Point<dim>> &y = store.position;
     std::size_t fresh_within_reach   = 0;
     for (std::size_t p = 0; p < m; ++p)
@@ -337,7 +339,9 @@ void check_kept_lists_against_fresh_builds(const bool with_crack,
     }
     // At the exchange the rows have no skin: exactly the fresh ones cut to the reach.
     if (exchanged)
+    {
       EXPECT_EQ(kept.n_pairs(), fresh_within_reach);
+    }
     // A smooth drift of at most 0.004 radius per step, and every tenth step a jump of
     // one particle by the skin: the lists must be made anew for each.
     for (std::size_t p = 0; p < m; ++p)
@@ -368,7 +372,9 @@ void check_kept_lists_against_fresh_builds(const bool with_crack,
   // Reaches of a half and four fifths of the radius for two thirds of the rows: the
   // kept rows, skin and all, are shorter than the fresh ones.
   if (with_reaches)
+  {
     EXPECT_LT(kept_pairs, 0.8 * fresh_pairs);
+  }
 }
 } // namespace
 

@@ -136,6 +136,10 @@ private:
   /// Per owned cell: the ranks whose halo holds it, as [offsets[c], offsets[c+1]).
   std::vector<std::uint32_t> ghost_offsets;
   std::vector<std::uint32_t> ghost_ranks;
+  /// Where exchange() last wrote each ghost it received in place (tried first).
+  std::vector<std::size_t> ghost_slots;
+  /// Messages to each rank, kept with their capacity between exchanges.
+  std::vector<std::vector<char>> out;
   std::size_t owned_cell_count = 0, halo_cell_count = 0;
 };
 } // namespace lme_mpm

@@ -150,7 +150,9 @@ private:
   /// every model gives one (Neighbourhood::cut_rows_to()); empty otherwise.
   std::vector<double> row_reaches;
   const RankReductions *ranks = nullptr;
-  double radius               = 0; ///< of the neighbourhood search
+  /// The largest spacing of any rank's particles (negative until the first prepare()).
+  double h_all_ranks = -1;
+  double radius      = 0; ///< of the neighbourhood search
   /// The neighbourhood's skin over its radius, where the models allow one.
   static constexpr double skin_fraction = 0.1;
   /// Without a model that gives no trigger: rows only around the seeds.
