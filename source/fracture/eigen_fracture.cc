@@ -139,11 +139,13 @@ public:
   {
     return std::max(C_eps, measured_band ? band_cells : 0.0) * h;
   }
-  /// The sums reach search_radius(h); band_opening()'s line reaches (reach + 0.1) h
-  /// along the crack direction and h / 4 off it, within (reach + 0.35) h.
+  /// The sums reach search_radius(h); band_opening()'s line reaches
+  /// (reach + line_slack) h along the crack direction and line_half_width h off it,
+  /// so within (reach + line_slack + line_half_width) h.
   double row_reach(const double h, const double band_reach_cells) const override
   {
-    return std::max(search_radius(h), (band_reach_cells + 0.35) * h);
+    return std::max(search_radius(h),
+                    (band_reach_cells + (line_slack + line_half_width)) * h);
   }
   /// The mass-weighted mean exceeds f_t only if some neighbour's stress does (failed
   /// neighbours count with zero). The margin covers the rounding of the sums.
@@ -372,10 +374,11 @@ private:
     const double reach = F.band_reach_of(P.body_id[p]) * h_p;
     if (reach <= 0 || own >= 1 || !nb.has_row(p))
       return own;
-    // The reach is a distance between particle positions at t = 0; a tenth of a cell
-    // lets particles that have moved a little still count.
-    const double along_max = reach + 0.1 * h_p, off2 = 0.0625 * h_p * h_p,
-                 within2 = nb.radius() * nb.radius();
+    // The reach is a distance between particle positions at t = 0; the slack lets
+    // particles that have moved a little still count.
+    const double along_max = reach + line_slack * h_p,
+                 off2      = line_half_width * line_half_width * h_p * h_p,
+                 within2   = nb.radius() * nb.radius();
     Tensor<1, dim> n;
     bool have_normal    = false;
     double band         = own;
@@ -468,6 +471,9 @@ private:
   double coupling = 0;
   /// How far either side of a particle its crack band's opening is summed, in cells.
   static constexpr double band_cells = 3;
+  /// band_opening()'s line, in cells: how far beyond the band's reach it extends along
+  /// the crack direction (a tenth of a cell), and its half width across (a quarter).
+  static constexpr double line_slack = 0.1, line_half_width = 0.25;
   bool paper_rule = false, measured_band = false;
   std::unique_ptr<SofteningLaw> law;
   mutable std::atomic<unsigned long> snap_back_count{0};
