@@ -185,8 +185,9 @@ void Decomposition<dim>::exchange(ParticleStore<dim> &particles)
       left = true;
     }
   }
-  const std::vector<char> arrived = particle_messages::all_to_all(comm, out);
-  const bool owned_stay           = !left && arrived.empty();
+  particle_messages::all_to_all(comm, out, send_buffer, arrived_buffer);
+  const std::vector<char> &arrived = arrived_buffer;
+  const bool owned_stay            = !left && arrived.empty();
   if (!owned_stay)
   {
     particle_messages::compact(particles, keep);
@@ -209,7 +210,8 @@ void Decomposition<dim>::exchange(ParticleStore<dim> &particles)
       for (std::uint32_t k = ghost_offsets[cells[p]]; k < ghost_offsets[cells[p] + 1];
            ++k)
         particle_messages::pack(particles, p, out[ghost_ranks[k]]);
-  const std::vector<char> ghosts = particle_messages::all_to_all(comm, out);
+  particle_messages::all_to_all(comm, out, send_buffer, ghost_buffer);
+  const std::vector<char> &ghosts = ghost_buffer;
   // Where no particle came or went and the halo holds the same particles as before
   // (most steps), the ghosts are written over in their slots: the store keeps its
   // order, and the next sort finds it sorted unless a particle changed cells. The
@@ -229,7 +231,8 @@ void Decomposition<dim>::gather(const ParticleStore<dim> &particles,
 {
   all.resize(0);
   all.keep_state(particles.kept_state());
-  std::vector<char> mine;
+  std::vector<char> &mine = gather_mine;
+  mine.clear();
   for (std::size_t p = 0; p < particles.size(); ++p)
     if (!particles.ghost[p])
       particle_messages::pack(particles, p, mine);
@@ -240,7 +243,8 @@ void Decomposition<dim>::gather(const ParticleStore<dim> &particles,
   AssertThrow(total < std::size_t(std::numeric_limits<int>::max()),
               ExcMessage("the particles gathered for output exceed 2 GB: write less "
                          "often, or run fewer particles per job"));
-  std::vector<char> received(my_rank == 0 ? total : 0);
+  std::vector<char> &received = gather_received;
+  received.resize(my_rank == 0 ? total : 0);
   MPI_Gatherv(mine.data(), count, MPI_CHAR, received.data(), counts.data(), at.data(),
               MPI_CHAR, 0, comm);
   if (my_rank != 0)

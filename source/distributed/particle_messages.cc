@@ -24,6 +24,25 @@ void for_fields(const ParticleStore<dim> &particles, F &&f)
         f(field, sizeof(T));
       });
 }
+
+/// Copies the n particles packed in @p buffer into the store's slots target(k).
+template <int dim, class Target>
+void copy_in(const std::vector<char> &buffer, const std::size_t n,
+             ParticleStore<dim> &particles, const Target &target)
+{
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const std::size_t slot = target(k);
+    particles.for_each_field(
+        [&](auto &field)
+        {
+          using T = typename std::decay_t<decltype(field)>::value_type;
+          std::memcpy(&field[slot], buffer.data() + at, sizeof(T));
+          at += sizeof(T);
+        });
+  }
+}
 } // namespace
 
 template <int dim>
@@ -55,15 +74,7 @@ void unpack(const std::vector<char> &buffer, ParticleStore<dim> &particles,
   AssertThrow(buffer.size() % bytes == 0, ExcInternalError());
   const std::size_t n = buffer.size() / bytes, first = particles.size();
   particles.resize(first + n);
-  std::size_t at = 0;
-  for (std::size_t k = 0; k < n; ++k)
-    particles.for_each_field(
-        [&](auto &field)
-        {
-          using T = typename std::decay_t<decltype(field)>::value_type;
-          std::memcpy(&field[first + k], buffer.data() + at, sizeof(T));
-          at += sizeof(T);
-        });
+  copy_in(buffer, n, particles, [first](const std::size_t k) { return first + k; });
   for (std::size_t p = first; p < first + n; ++p)
     particles.ghost[p] = ghost;
 }
@@ -128,15 +139,7 @@ bool refill_ghosts(const std::vector<char> &buffer, ParticleStore<dim> &particle
     }
     slots.swap(found);
   }
-  std::size_t at = 0;
-  for (std::size_t k = 0; k < n; ++k)
-    particles.for_each_field(
-        [&](auto &field)
-        {
-          using T = typename std::decay_t<decltype(field)>::value_type;
-          std::memcpy(&field[slots[k]], buffer.data() + at, sizeof(T));
-          at += sizeof(T);
-        });
+  copy_in(buffer, n, particles, [&slots](const std::size_t k) { return slots[k]; });
   // The sender's flag (owned there) came with the rest.
   for (const std::size_t p : slots)
     particles.ghost[p] = 1;
@@ -170,11 +173,12 @@ std::size_t displacements(const std::vector<int> &counts, std::vector<int> &at)
   return total;
 }
 
-std::vector<char> all_to_all(MPI_Comm comm, const std::vector<std::vector<char>> &out)
+void all_to_all(MPI_Comm comm, const std::vector<std::vector<char>> &out,
+                std::vector<char> &send, std::vector<char> &received)
 {
   const std::size_t size = out.size();
   std::vector<int> send_counts(size), recv_counts(size), send_at(size), recv_at(size);
-  std::vector<char> send;
+  send.clear();
   for (unsigned int r = 0; r < size; ++r)
   {
     AssertThrow(out[r].size() < std::size_t(std::numeric_limits<int>::max()) / 2,
@@ -188,10 +192,9 @@ std::vector<char> all_to_all(MPI_Comm comm, const std::vector<std::vector<char>>
   AssertThrow(total < std::size_t(std::numeric_limits<int>::max()),
               ExcMessage("a rank receives over 2 GB of particles in one step: use more "
                          "ranks"));
-  std::vector<char> received(total);
+  received.resize(total);
   MPI_Alltoallv(send.data(), send_counts.data(), send_at.data(), MPI_CHAR,
                 received.data(), recv_counts.data(), recv_at.data(), MPI_CHAR, comm);
-  return received;
 }
 
 template void pack(const ParticleStore<2> &, std::size_t, std::vector<char> &);

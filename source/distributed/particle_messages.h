@@ -41,9 +41,14 @@ void compact(ParticleStore<dim> &particles, const std::vector<std::uint8_t> &kee
 
 /// Where each rank's piece starts in a message of pieces @p counts long; the total.
 std::size_t displacements(const std::vector<int> &counts, std::vector<int> &at);
-/// Sends @p out[r] to rank r of @p comm; returns what the ranks sent here, in rank
-/// order.
-std::vector<char> all_to_all(MPI_Comm comm, const std::vector<std::vector<char>> &out);
+/**
+ * Sends @p out[r] to rank r of @p comm; @p received: what the ranks sent here, in
+ * rank order. @p send and @p received are the caller's, so that they keep their
+ * capacity from one call to the next: a message received into freshly allocated
+ * memory is copied several times slower (its pages are mapped during the copy).
+ */
+void all_to_all(MPI_Comm comm, const std::vector<std::vector<char>> &out,
+                std::vector<char> &send, std::vector<char> &received);
 } // namespace particle_messages
 } // namespace lme_mpm
 

@@ -231,6 +231,11 @@ double GridTransfer<dim>::grid_to_particles(const ExplicitNewmark &newmark,
         double pw = 0, v2 = 0;
         for (std::size_t p = b; p < e; ++p)
         {
+          // Ghosts (copies of another rank's particles) are not updated: the
+          // exchange that ends the step writes their owners' values over them, and
+          // nothing reads them before it.
+          if (particles.ghost[p])
+            continue;
           const Tensor<1, dim> a = interpolate(fields.acceleration, p);
           const Tensor<1, dim> v0 =
               xpic_order > 0 ? interpolate(start_velocity, p) : particles.velocity[p];
@@ -241,10 +246,6 @@ double GridTransfer<dim>::grid_to_particles(const ExplicitNewmark &newmark,
           // after the predictor): interpolated here, not stored per particle.
           const Tensor<1, dim> increment = dt * interpolate(fields.rate, p);
           particles.position[p] += increment;
-          // Ghosts (copies of another rank's particles) are that rank's to sum and
-          // check; their results near the halo's edge are not meant to be right.
-          if (particles.ghost[p])
-            continue;
           if (prescribed_body.empty() || !prescribed_body[particles.body_id[p]])
             pw += particles.mass[p] * (body_force * increment);
           v2                = std::max(v2, particles.velocity[p].norm_square());

@@ -140,6 +140,11 @@ private:
   std::vector<std::size_t> ghost_slots;
   /// Messages to each rank, kept with their capacity between exchanges.
   std::vector<std::vector<char>> out;
+  /// Message memory kept from one call to the next, as `out`: a message received
+  /// into freshly allocated memory is copied several times slower, since its pages
+  /// are mapped during the copy. The gather's are scratch of a const call.
+  std::vector<char> send_buffer, arrived_buffer, ghost_buffer;
+  mutable std::vector<char> gather_mine, gather_received;
   std::size_t owned_cell_count = 0, halo_cell_count = 0;
 };
 } // namespace lme_mpm
