@@ -40,6 +40,7 @@ public:
 
   std::string name() const override { return "bspline"; }
   unsigned int max_nodes_per_particle() const override { return 1u << (2 * dim); }
+  unsigned int factor_width() const override { return 4; }
   double support_radius(const BackgroundGrid<dim> &g) const override
   {
     return 2 * this->largest_cell_diagonal(g); // support 2 h per direction
@@ -52,8 +53,9 @@ public:
     for (std::size_t p = begin; p < end; ++p)
     {
       const Point<dim> &x = particles.position[p];
-      std::array<unsigned int, dim> cell, i0, n;
-      std::array<std::array<double, 4>, dim> w, dw;
+      std::array<unsigned int, dim> cell;
+      SeparableRow<dim, 4> r;
+      auto &w = r.w, &dw = r.dw;
       AssertThrow(grid.locate(x, cell),
                   ExcShapeFunctionFailure("bspline", particles.id[p], point_to_string(x),
                                           "the particle is outside the grid"));
@@ -84,12 +86,10 @@ public:
         }
         for (unsigned int k = lo; k <= hi; ++k)
           w[d][k - lo] = w[d][k], dw[d][k - lo] = dw[d][k];
-        i0[d] = i + lo - 1;
-        n[d]  = hi - lo + 1;
+        r.i0[d] = i + lo - 1;
+        r.n[d]  = hi - lo + 1;
       }
-      conn.n_nodes[p] = tensor_product_row<dim, 4>(
-          grid, i0, n, w, dw, &conn.nodes[p * conn.stride], &conn.N[p * conn.stride],
-          &conn.grad_N[p * conn.stride]);
+      store_row(grid, conn, p, r);
     }
   }
 

@@ -45,6 +45,7 @@ public:
 
   std::string name() const override { return "ugimp"; }
   unsigned int max_nodes_per_particle() const override { return max_nodes; }
+  unsigned int factor_width() const override { return max_1d; }
   double support_radius(const BackgroundGrid<dim> &g) const override
   {
     // h plus the box half-width (at most h / 2) per direction; a box reaching a
@@ -80,8 +81,9 @@ public:
       if (!(lp > 0))
         fail("the particle has no volume, so no GIMP domain");
 
-      std::array<unsigned int, dim> i0, n;
-      std::array<std::array<double, max_1d>, dim> w, dw;
+      SeparableRow<dim, max_1d> r;
+      auto &i0 = r.i0, &n = r.n;
+      auto &w = r.w, &dw = r.dw;
       for (unsigned int d = 0; d < dim; ++d)
       {
         const std::vector<double> &c = grid.coordinates(d);
@@ -122,9 +124,7 @@ public:
           dw[d][k] = (hat(c, I, b) - hat(c, I, a)) / width;
         }
       }
-      conn.n_nodes[p] = tensor_product_row<dim, max_1d>(
-          grid, i0, n, w, dw, &conn.nodes[p * conn.stride], &conn.N[p * conn.stride],
-          &conn.grad_N[p * conn.stride]);
+      store_row(grid, conn, p, r);
     }
   }
 

@@ -166,6 +166,16 @@ void ExplicitStep<dim>::locate_and_sort(const double t, const unsigned int step)
 }
 
 template <int dim>
+bool ExplicitStep<dim>::full_rows_needed() const
+{
+  // The parts that read the connectivity's rows besides the transfers: explicit
+  // cracks and their face contact, body fields and their contact, rigid surfaces,
+  // the mass matrix.
+  return !parts.cracks.empty() || parts.contact.active() || parts.rigid.active() ||
+         parts.mass.active();
+}
+
+template <int dim>
 void ExplicitStep<dim>::particles_to_grid()
 {
   StageTimer::Scope scope(timer, stage.to_grid);
@@ -180,7 +190,8 @@ void ExplicitStep<dim>::particles_to_grid()
         parts.cracks.separate(parts.particles, parts.grid, parts.transfer.connectivity(),
                               b, e, touched);
         parts.contact.separate(parts.transfer.connectivity(), b, e);
-      });
+      },
+      full_rows_needed());
   if (parts.mass.consistent())
   {
     // Both solves of the step use this connectivity.

@@ -65,35 +65,45 @@ std::pair<unsigned int, unsigned int>
 GridTransfer<dim>::support_reach(const std::size_t begin, const std::size_t end) const
 {
   unsigned int below = 0, above = 0;
-  for (std::size_t p = begin; p < end; ++p)
-  {
-    const unsigned int layer = grid.cell_layer(particles.cell[p]);
-    const unsigned int *row  = &conn.nodes[p * conn.stride];
-    const unsigned int lo    = grid.node_layer(row[0]);
-    const unsigned int hi    = grid.node_layer(row[conn.n_nodes[p] - 1]);
-    below                    = std::max(below, layer > lo ? layer - lo : 0u);
-    above                    = std::max(above, hi > layer ? hi - layer : 0u);
-  }
+  with_rows(grid, conn,
+            [&](const auto &rows)
+            {
+              for (std::size_t p = begin; p < end; ++p)
+              {
+                const unsigned int layer = grid.cell_layer(particles.cell[p]);
+                const auto [first, last] = rows.first_and_last(p);
+                const unsigned int lo    = grid.node_layer(first);
+                const unsigned int hi    = grid.node_layer(last);
+                below                    = std::max(below, layer > lo ? layer - lo : 0u);
+                above                    = std::max(above, hi > layer ? hi - layer : 0u);
+              }
+            });
   return {below, above};
 }
 
 template <int dim>
 void GridTransfer<dim>::scatter_particles(const std::size_t b, const std::size_t e)
 {
+  with_rows(grid, conn, [&](const auto &rows) { scatter_particles(rows, b, e); });
+}
+
+template <int dim>
+template <class Rows>
+void GridTransfer<dim>::scatter_particles(const Rows &rows, const std::size_t b,
+                                          const std::size_t e)
+{
   for (std::size_t p = b; p < e; ++p)
   {
-    const std::size_t o     = p * conn.stride;
     const double m          = particles.mass[p];
     const Tensor<1, dim> mv = m * particles.velocity[p],
                          ma = m * particles.acceleration[p];
-    for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
-    {
-      const unsigned int I = conn.nodes[o + k];
-      const double N       = conn.N[o + k];
-      fields.mass[I] += N * m;
-      fields.momentum[I] += N * mv;
-      fields.mass_acceleration[I] += N * ma;
-    }
+    rows.visit(p,
+               [&](const unsigned int I, const double N, const Tensor<1, dim> &)
+               {
+                 fields.mass[I] += N * m;
+                 fields.momentum[I] += N * mv;
+                 fields.mass_acceleration[I] += N * ma;
+               });
   }
 }
 
@@ -101,7 +111,7 @@ template <int dim>
 void GridTransfer<dim>::particles_to_grid(
     const ShapeFunction<dim> &shape_function,
     const std::vector<unsigned int> &extra_nodes,
-    const std::function<void(std::size_t, std::size_t)> &remap)
+    const std::function<void(std::size_t, std::size_t)> &remap, const bool full_rows)
 {
   // Each chunk gets its shape functions and scatters them while they are in cache,
   // in slabs sized by the reach of the supports so far. A chunk whose supports reach
@@ -110,7 +120,13 @@ void GridTransfer<dim>::particles_to_grid(
   // and where supports grow. The order depends on the particles only, not on the
   // threads.
   fields.clear(extra_nodes);
-  conn.resize(particles.size(), shape_function.max_nodes_per_particle());
+  // Rows kept as their factors where nothing but the transfers reads them: fewer
+  // bytes written here and read by every pass after (doc/performance.md).
+  const unsigned int width = shape_function.factor_width();
+  if (!full_rows && (width == 2 || width == 4))
+    conn.resize_factors(particles.size(), shape_function.max_nodes_per_particle(), width);
+  else
+    conn.resize(particles.size(), shape_function.max_nodes_per_particle());
   const unsigned int below = slab_below, above = slab_above;
   std::atomic<unsigned int> reach_below{below}, reach_above{above};
   scatter_chunks(
@@ -160,12 +176,19 @@ template <int dim>
 void GridTransfer<dim>::strain_increments(const std::size_t b, const std::size_t e,
                                           const double dt)
 {
+  with_rows(grid, conn, [&](const auto &rows) { strain_increments(rows, b, e, dt); });
+}
+
+template <int dim>
+template <class Rows>
+void GridTransfer<dim>::strain_increments(const Rows &rows, const std::size_t b,
+                                          const std::size_t e, const double dt)
+{
   for (std::size_t p = b; p < e; ++p)
   {
-    const std::size_t o = p * conn.stride;
     Tensor<2, dim> grad_v;
-    for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
-      grad_v += outer_product(fields.rate[conn.nodes[o + k]], conn.grad_N[o + k]);
+    rows.visit(p, [&](const unsigned int I, const double, const Tensor<1, dim> &grad_N)
+               { grad_v += outer_product(fields.rate[I], grad_N); });
     const SymmetricTensor<2, dim> de = dt * symmetrize(grad_v);
     particles.strain_increment[p]    = de;
     particles.strain[p] += de;
@@ -178,26 +201,33 @@ template <int dim>
 void GridTransfer<dim>::forces(const std::size_t b, const std::size_t e,
                                const Tensor<1, dim> &body_force)
 {
+  with_rows(grid, conn, [&](const auto &rows) { forces(rows, b, e, body_force); });
+}
+
+template <int dim>
+template <class Rows>
+void GridTransfer<dim>::forces(const Rows &rows, const std::size_t b, const std::size_t e,
+                               const Tensor<1, dim> &body_force)
+{
   const bool gravity = body_force.norm_square() > 0;
   for (std::size_t p = b; p < e; ++p)
   {
-    const std::size_t o = p * conn.stride;
     // A full tensor: the symmetric one's element access costs more per node.
     const Tensor<2, dim> s =
         has_crack_normal(particles, p)
             ? Tensor<2, dim>(particles.initial_volume[p] * effective_stress(particles, p))
             : Tensor<2, dim>((stress_factor(particles, p) * particles.initial_volume[p]) *
                              particles.stress[p]);
-    const unsigned int n = conn.n_nodes[p];
     if (gravity)
     {
       const Tensor<1, dim> g = particles.mass[p] * body_force;
-      for (unsigned int k = 0; k < n; ++k)
-        fields.force[conn.nodes[o + k]] += conn.N[o + k] * g - s * conn.grad_N[o + k];
+      rows.visit(p,
+                 [&](const unsigned int I, const double N, const Tensor<1, dim> &grad_N)
+                 { fields.force[I] += N * g - s * grad_N; });
     }
     else
-      for (unsigned int k = 0; k < n; ++k)
-        fields.force[conn.nodes[o + k]] -= s * conn.grad_N[o + k];
+      rows.visit(p, [&](const unsigned int I, const double, const Tensor<1, dim> &grad_N)
+                 { fields.force[I] -= s * grad_N; });
   }
 }
 
@@ -229,33 +259,57 @@ double GridTransfer<dim>::grid_to_particles(const ExplicitNewmark &newmark,
       [&](const std::size_t b, const std::size_t e)
       {
         double pw = 0, v2 = 0;
-        for (std::size_t p = b; p < e; ++p)
-        {
-          // Ghosts (copies of another rank's particles) are not updated: the
-          // exchange that ends the step writes their owners' values over them, and
-          // nothing reads them before it.
-          if (particles.ghost[p])
-            continue;
-          const Tensor<1, dim> a = interpolate(fields.acceleration, p);
-          const Tensor<1, dim> v0 =
-              xpic_order > 0 ? interpolate(start_velocity, p) : particles.velocity[p];
-          particles.velocity[p] =
-              newmark.corrected_velocity(v0, particles.acceleration[p], a, dt);
-          particles.acceleration[p] = a;
-          // The rates are those the strains were taken from (nothing changes them
-          // after the predictor): interpolated here, not stored per particle.
-          const Tensor<1, dim> increment = dt * interpolate(fields.rate, p);
-          particles.position[p] += increment;
-          if (prescribed_body.empty() || !prescribed_body[particles.body_id[p]])
-            pw += particles.mass[p] * (body_force * increment);
-          v2                = std::max(v2, particles.velocity[p].norm_square());
-          const double move = increment.norm();
-          // Leaving the grid is caught here, where the guard's flag rides on the
-          // step's one reduction, not at the next step's search of cells.
-          if (!(move < max_move) || !std::isfinite(particles.velocity[p].norm_square()) ||
-              !(particles.density[p] > 0) || !grid.inside(particles.position[p]))
-            keep_lowest(first_bad, p);
-        }
+        with_rows(
+            grid, conn,
+            [&](const auto &rows)
+            {
+              for (std::size_t p = b; p < e; ++p)
+              {
+                // Ghosts (copies of another rank's particles) are not updated: the
+                // exchange that ends the step writes their owners' values over them, and
+                // nothing reads them before it.
+                if (particles.ghost[p])
+                  continue;
+                // The interpolations in one walk over the row, each summed in its order.
+                // The rates are those the strains were taken from (nothing changes them
+                // after the predictor): interpolated here, not stored per particle.
+                Tensor<1, dim> a, v_start, rate;
+                if (xpic_order > 0)
+                  rows.visit(
+                      p,
+                      [&](const unsigned int I, const double N, const Tensor<1, dim> &)
+                      {
+                        a += N * fields.acceleration[I];
+                        v_start += N * start_velocity[I];
+                        rate += N * fields.rate[I];
+                      });
+                else
+                  rows.visit(
+                      p,
+                      [&](const unsigned int I, const double N, const Tensor<1, dim> &)
+                      {
+                        a += N * fields.acceleration[I];
+                        rate += N * fields.rate[I];
+                      });
+                const Tensor<1, dim> v0 =
+                    xpic_order > 0 ? v_start : particles.velocity[p];
+                particles.velocity[p] =
+                    newmark.corrected_velocity(v0, particles.acceleration[p], a, dt);
+                particles.acceleration[p]      = a;
+                const Tensor<1, dim> increment = dt * rate;
+                particles.position[p] += increment;
+                if (prescribed_body.empty() || !prescribed_body[particles.body_id[p]])
+                  pw += particles.mass[p] * (body_force * increment);
+                v2                = std::max(v2, particles.velocity[p].norm_square());
+                const double move = increment.norm();
+                // Leaving the grid is caught here, where the guard's flag rides on the
+                // step's one reduction, not at the next step's search of cells.
+                if (!(move < max_move) ||
+                    !std::isfinite(particles.velocity[p].norm_square()) ||
+                    !(particles.density[p] > 0) || !grid.inside(particles.position[p]))
+                  keep_lowest(first_bad, p);
+              }
+            });
         double seen = fastest.load();
         while (v2 > seen && !fastest.compare_exchange_weak(seen, v2))
         {
@@ -293,13 +347,17 @@ void GridTransfer<dim>::apply_consistent_mass(const std::vector<Tensor<1, dim>> 
                       });
   for (const unsigned int I : fields.active)
     Mx[I] = Tensor<1, dim>();
-  scatter(
-      [&](const std::size_t p)
-      {
-        const std::size_t o = p * conn.stride;
-        for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
-          Mx[conn.nodes[o + k]] += conn.N[o + k] * particle_scratch[p];
-      });
+  with_rows(grid, conn,
+            [&](const auto &rows)
+            {
+              scatter(
+                  [&](const std::size_t p)
+                  {
+                    rows.visit(p, [&](const unsigned int I, const double N,
+                                      const Tensor<1, dim> &)
+                               { Mx[I] += N * particle_scratch[p]; });
+                  });
+            });
 }
 
 template class GridTransfer<2>;

@@ -55,13 +55,15 @@ struct Scatter
     functions    = ShapeFunctionRegistry<2>::instance().create(family, prm, context);
   }
 
-  /// Particles to grid with a transfer built for the current thread limit.
-  std::unique_ptr<GridTransfer<2>> transfer()
+  /// Particles to grid with a transfer built for the current thread limit; rows in
+  /// full, or as their factors where the family allows it (@p full_rows false).
+  std::unique_ptr<GridTransfer<2>> transfer(const bool full_rows = true)
   {
     auto t = std::make_unique<GridTransfer<2>>(grid, particles);
     t->nodes().layout.reinit(grid.n_nodes());
     EXPECT_EQ(t->locate_and_sort(), particles.size());
-    t->particles_to_grid(*functions, {}, [](std::size_t, std::size_t) {});
+    t->particles_to_grid(
+        *functions, {}, [](std::size_t, std::size_t) {}, full_rows);
     return t;
   }
 };
@@ -113,6 +115,55 @@ TEST_P(Families, InternalForcesSumToTheBodyForce)
     weight += s.particles.mass[p] * g;
   // Gradients of a partition of unity sum to zero: the stresses add no net force.
   EXPECT_NEAR((total - weight).norm(), 0, 1e-9 * weight.norm());
+}
+
+TEST(GridTransfer, RowsKeptAsFactorsGiveTheFullRowsStepToTheBit)
+{
+  // A whole step's transfers (scatter, strains, forces, the particle update) with the
+  // tensor-product families' rows in full and as their factors: every nodal and
+  // particle value equal to the bit (graded grids for linear and uGIMP).
+  for (const std::string family : {"linear", "ugimp", "bspline"})
+  {
+    std::vector<std::vector<double>> results;
+    for (const bool full_rows : {true, false})
+    {
+      Scatter s(family, Tensor<1, 2>({0.3, -1.2}));
+      for (std::size_t p = 0; p < s.particles.size(); ++p)
+        s.particles.velocity[p][0] += 0.1 * std::sin(7 * s.particles.position[p][1]);
+      const auto transfer = s.transfer(full_rows);
+      // Linear rows are kept in full in 2D (Linear::factor_width()).
+      EXPECT_EQ(transfer->connectivity().factor_width,
+                full_rows || family == "linear" ? 0u : 4u)
+          << family;
+      ExplicitNewmark newmark;
+      const double dt = 1e-4;
+      transfer->predict_rates(newmark, dt, 1e-20);
+      transfer->strain_increments(0, s.particles.size(), dt);
+      const Tensor<1, 2> g({0, -9.81});
+      transfer->scatter_chunks([&](const std::size_t b, const std::size_t e)
+                               { transfer->forces(b, e, g); });
+      transfer->accelerations(1e-20);
+      std::size_t bad   = 0;
+      double fastest    = 0;
+      const double work = transfer->grid_to_particles(newmark, dt, g, 1.0, bad, fastest);
+      std::vector<double> r = {work, fastest, double(bad)};
+      const auto &nodes     = transfer->nodes();
+      for (const unsigned int I : nodes.active)
+        for (unsigned int d = 0; d < 2; ++d)
+          r.insert(r.end(), {nodes.mass[I], nodes.momentum[I][d], nodes.force[I][d],
+                             nodes.rate[I][d]});
+      for (std::size_t p = 0; p < s.particles.size(); ++p)
+        for (unsigned int d = 0; d < 2; ++d)
+          r.insert(r.end(), {s.particles.position[p][d], s.particles.velocity[p][d],
+                             s.particles.strain[p][d][d], s.particles.strain[p][0][1]});
+      results.push_back(r);
+    }
+    ASSERT_EQ(results[0].size(), results[1].size()) << family;
+    std::size_t differ = 0;
+    for (std::size_t k = 0; k < results[0].size(); ++k)
+      differ += results[0][k] != results[1][k];
+    EXPECT_EQ(differ, 0u) << family;
+  }
 }
 
 /// The mass matrix tests run on every family (B-splines included).

@@ -2,6 +2,10 @@
 
 #include "shape_function_checks.h"
 
+#include <lme_mpm/shape_functions/tensor_product.h>
+
+#include <type_traits>
+
 using namespace lme_mpm;
 using namespace shape_function_checks;
 
@@ -112,4 +116,65 @@ TEST(ShapeFunctions, BsplineNeedsAUniformGrid)
   }
   EXPECT_ANY_THROW(make<3>("bspline", *graded_grid<3>()));
   EXPECT_NO_THROW(make<2>("bspline", *uniform_grid<2>(0.1, 4)));
+}
+
+TEST(ShapeFunctions, RowsKeptAsFactorsVisitTheFullRowsNodesAndValues)
+{
+  // Every tensor-product family in 2D and 3D, on uniform and graded grids: the rows
+  // compute() keeps as factors give, node by node, the index, value and gradient of
+  // the row it writes in full, to the bit (the transfers read either).
+  const auto check = [](auto dim_tag, const std::string &type, const bool graded)
+  {
+    constexpr int dim      = decltype(dim_tag)::value;
+    auto grid              = graded ? graded_grid<dim>() : uniform_grid<dim>(0.1, 6);
+    const double thickness = 0.01;
+    auto sf                = make<dim>(type, *grid, {}, thickness);
+    std::mt19937 rng(7);
+    ParticleStore<dim> ps;
+    const double lp = 0.3 * grid->min_spacing();
+    for (unsigned int i = 0; i < 200; ++i)
+      ps.add(random_point(*grid, rng, 0.5 * lp), 1.0,
+             volume_for_half_width<dim>(lp, thickness), 0, 0);
+    const Connectivity<dim> full = evaluate(*sf, ps);
+    // Linear rows have at most 2 nodes per direction, the others 4.
+    const unsigned int width = type == "linear" ? 2 : 4;
+    Connectivity<dim> factors;
+    factors.resize_factors(ps.size(), sf->max_nodes_per_particle(), width);
+    sf->compute(ps, 0, ps.size(), factors);
+    EXPECT_TRUE(factors.nodes.empty());
+    std::size_t checked = 0, differ = 0;
+    with_rows(*grid, factors,
+              [&](const auto &rows)
+              {
+                for (std::size_t p = 0; p < ps.size(); ++p)
+                {
+                  unsigned int k = 0;
+                  rows.visit(
+                      p,
+                      [&](const unsigned int I, const double N, const Tensor<1, dim> &g)
+                      {
+                        const std::size_t o = p * full.stride + k;
+                        differ +=
+                            I != full.nodes[o] || N != full.N[o] || g != full.grad_N[o];
+                        ++k, ++checked;
+                      });
+                  EXPECT_EQ(k, full.n_nodes[p]);
+                  EXPECT_EQ(factors.n_nodes[p], full.n_nodes[p]);
+                  const auto [first, last] = rows.first_and_last(p);
+                  EXPECT_EQ(first, full.nodes[p * full.stride]);
+                  EXPECT_EQ(last, full.nodes[p * full.stride + full.n_nodes[p] - 1]);
+                }
+              });
+    EXPECT_GT(checked, ps.size()) << type;
+    EXPECT_EQ(differ, 0u) << type << " in " << dim << "D";
+  };
+  for (const bool graded : {false, true})
+  {
+    check(std::integral_constant<int, 2>(), "linear", graded);
+    check(std::integral_constant<int, 3>(), "linear", graded);
+    check(std::integral_constant<int, 2>(), "ugimp", graded);
+    check(std::integral_constant<int, 3>(), "ugimp", graded);
+  }
+  check(std::integral_constant<int, 2>(), "bspline", false);
+  check(std::integral_constant<int, 3>(), "bspline", false);
 }

@@ -17,26 +17,64 @@
 namespace lme_mpm
 {
 /**
+ * A tensor-product row kept as its factors: along each direction d the nodes
+ * i0[d] + k, k < n[d], with 1D values w[d][k] and derivatives dw[d][k]. The row's
+ * values and gradients are their products (tensor_product.h), formed where they are
+ * used: a few bytes per direction in place of a value and a gradient per node.
+ */
+template <int dim, int max_1d>
+struct SeparableRow
+{
+  std::array<unsigned int, dim> i0, n;
+  std::array<std::array<double, max_1d>, dim> w, dw;
+};
+
+/**
  * Particle-node coupling for one step, stored flat: particle p owns the slots
  * [p * stride, p * stride + n_nodes[p]) of `nodes`, `N` and `grad_N`, with its nodes
  * in increasing index order. Computed once per step and shared by every transfer.
+ *
+ * Where only the transfers read the rows (no explicit cracks, body fields, rigid
+ * surfaces or mass matrix) and the functions are a tensor product of at most
+ * `factor_width` nodes per direction, each row is kept as its factors instead
+ * (`factors_2` or `factors_4`); `nodes`, `N` and `grad_N` are then empty.
  */
 template <int dim>
 struct Connectivity
 {
   unsigned int stride = 0;
+  /// 0: full rows; 2 or 4: rows kept as factors in factors_2 or factors_4.
+  unsigned int factor_width = 0;
   std::vector<unsigned int> n_nodes;
   std::vector<unsigned int> nodes;
   std::vector<double> N;
   std::vector<Tensor<1, dim>> grad_N;
-
+  std::vector<SeparableRow<dim, 2>> factors_2;
+  std::vector<SeparableRow<dim, 4>> factors_4;
   void resize(const std::size_t n_particles, const unsigned int max_nodes)
   {
-    stride = max_nodes;
+    stride       = max_nodes;
+    factor_width = 0;
     n_nodes.resize(n_particles);
     nodes.resize(n_particles * stride);
     N.resize(n_particles * stride);
     grad_N.resize(n_particles * stride);
+  }
+  /// Rows kept as factors of at most @p width (2 or 4) nodes per direction; the full
+  /// rows' memory is released.
+  void resize_factors(const std::size_t n_particles, const unsigned int max_nodes,
+                      const unsigned int width)
+  {
+    stride       = max_nodes;
+    factor_width = width;
+    n_nodes.resize(n_particles);
+    std::vector<unsigned int>().swap(nodes);
+    std::vector<double>().swap(N);
+    std::vector<Tensor<1, dim>>().swap(grad_N);
+    if (width == 2)
+      factors_2.resize(n_particles);
+    else
+      factors_4.resize(n_particles);
   }
 };
 
@@ -76,6 +114,12 @@ public:
 
   /// Upper bound of nodes coupled to one particle on this grid.
   virtual unsigned int max_nodes_per_particle() const = 0;
+  /**
+   * For a tensor-product family: the most nodes per direction of a row (2 or 4), if
+   * compute() can keep its rows as their factors (Connectivity::factor_width set by
+   * the caller; store_row() in tensor_product.h). 0 (the default): full rows only.
+   */
+  virtual unsigned int factor_width() const { return 0; }
 
   /**
    * Upper bound of the distance between a particle and a node of its support (m);

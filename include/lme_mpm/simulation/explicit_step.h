@@ -88,6 +88,8 @@ private:
   void grow_cracks();
   void locate_and_sort(double t, unsigned int step);
   void particles_to_grid();
+  /// True if a part besides the transfers reads the step's full connectivity rows.
+  bool full_rows_needed() const;
   void predict_rates(double t_half);
   void stresses_and_forces(double t_new);
   /// Accelerations with contact and constraints.

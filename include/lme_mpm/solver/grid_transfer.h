@@ -9,6 +9,7 @@
 #include <lme_mpm/grid/nodal_fields.h>
 #include <lme_mpm/particles/particle_store.h>
 #include <lme_mpm/shape_functions/shape_function.h>
+#include <lme_mpm/shape_functions/tensor_product.h>
 #include <lme_mpm/solver/explicit_newmark.h>
 
 #include <algorithm>
@@ -41,6 +42,11 @@ public:
 
   NodalFields<dim> &nodes() { return fields; }
   const NodalFields<dim> &nodes() const { return fields; }
+  /**
+   * The rows of the step. Where only the transfers read them they may be kept as
+   * their factors (Connectivity), with `nodes`, `N` and `grad_N` empty: a part that
+   * reads the full rows asks for them (particles_to_grid()'s @p full_rows).
+   */
   const Connectivity<dim> &connectivity() const { return conn; }
   /// The displacement rate at particle @p p (after the predictor).
   Tensor<1, dim> rate_at(const std::size_t p) const
@@ -69,7 +75,8 @@ public:
    */
   void particles_to_grid(const ShapeFunction<dim> &shape_function,
                          const std::vector<unsigned int> &extra_nodes,
-                         const std::function<void(std::size_t, std::size_t)> &remap);
+                         const std::function<void(std::size_t, std::size_t)> &remap,
+                         bool full_rows = true);
 
   /// Displacement rate w = v + dt/2 a on every field with mass.
   void predict_rates(const ExplicitNewmark &newmark, double dt, double mass_tolerance);
@@ -235,10 +242,17 @@ private:
   Tensor<1, dim> interpolate(const std::vector<Tensor<1, dim>> &x,
                              const std::size_t p) const
   {
-    const std::size_t o = p * conn.stride;
     Tensor<1, dim> xp;
-    for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
-      xp += conn.N[o + k] * x[conn.nodes[o + k]];
+    with_rows(grid, conn, [&](const auto &rows) { xp = interpolate(rows, x, p); });
+    return xp;
+  }
+  template <class Rows>
+  static Tensor<1, dim>
+  interpolate(const Rows &rows, const std::vector<Tensor<1, dim>> &x, const std::size_t p)
+  {
+    Tensor<1, dim> xp;
+    rows.visit(p, [&](const unsigned int I, const double N, const Tensor<1, dim> &)
+               { xp += N * x[I]; });
     return xp;
   }
   /// How many cell layers the supports of [begin, end) reach below and above their
@@ -247,6 +261,13 @@ private:
                                                       std::size_t end) const;
   /// Mass, momentum and mass-weighted acceleration of [begin, end) on the nodes.
   void scatter_particles(std::size_t begin, std::size_t end);
+  template <class Rows>
+  void scatter_particles(const Rows &rows, std::size_t begin, std::size_t end);
+  template <class Rows>
+  void strain_increments(const Rows &rows, std::size_t begin, std::size_t end, double dt);
+  template <class Rows>
+  void forces(const Rows &rows, std::size_t begin, std::size_t end,
+              const Tensor<1, dim> &body_force);
 
   const BackgroundGrid<dim> &grid;
   ParticleStore<dim> &particles;
