@@ -37,7 +37,7 @@ struct SeparableRow
  * Where only the transfers read the rows (no explicit cracks, body fields, rigid
  * surfaces or mass matrix) and the functions are a tensor product of at most
  * `factor_width` nodes per direction, each row is kept as its factors instead
- * (`factors_2` or `factors_4`); `nodes`, `N` and `grad_N` are then empty.
+ * (`factors_2` or `factors_4`); `n_nodes`, `nodes`, `N` and `grad_N` are then empty.
  */
 template <int dim>
 struct Connectivity
@@ -61,13 +61,12 @@ struct Connectivity
     grad_N.resize(n_particles * stride);
   }
   /// Rows kept as factors of at most @p width (2 or 4) nodes per direction; the full
-  /// rows' memory is released.
-  void resize_factors(const std::size_t n_particles, const unsigned int max_nodes,
-                      const unsigned int width)
+  /// rows' memory, n_nodes included, is released (their walks count the nodes).
+  void resize_factors(const std::size_t n_particles, const unsigned int width)
   {
-    stride       = max_nodes;
+    stride       = 0;
     factor_width = width;
-    n_nodes.resize(n_particles);
+    std::vector<unsigned int>().swap(n_nodes);
     std::vector<unsigned int>().swap(nodes);
     std::vector<double>().swap(N);
     std::vector<Tensor<1, dim>>().swap(grad_N);

@@ -138,10 +138,6 @@ LME_MPM_INLINE_ROW void store_row(const BackgroundGrid<dim> &grid,
          ExcMessage("rows kept as factors of another width than the family's"));
   if (conn.factor_width == max_1d)
   {
-    unsigned int count = 1;
-    for (unsigned int d = 0; d < dim; ++d)
-      count *= r.n[d];
-    conn.n_nodes[p] = count;
     if constexpr (max_1d == 2)
       conn.factors_2[p] = r;
     else
