@@ -49,7 +49,8 @@ public:
   void compute(ParticleStore<dim> &particles, const std::size_t begin,
                const std::size_t end, Connectivity<dim> &conn) const override
   {
-    Assert(conn.stride >= max_nodes_per_particle(), ExcInternalError());
+    Assert(conn.factor_width == 4 || conn.stride >= max_nodes_per_particle(),
+           ExcInternalError());
     for (std::size_t p = begin; p < end; ++p)
     {
       const Point<dim> &x = particles.position[p];

@@ -67,7 +67,7 @@ public:
   void compute(ParticleStore<dim> &particles, const std::size_t begin,
                const std::size_t end, Connectivity<dim> &conn) const override
   {
-    Assert(conn.stride >= max_nodes, ExcInternalError());
+    Assert(conn.factor_width == max_1d || conn.stride >= max_nodes, ExcInternalError());
     for (std::size_t p = begin; p < end; ++p)
     {
       const Point<dim> &x = particles.position[p];

@@ -144,9 +144,17 @@ LME_MPM_INLINE_ROW void store_row(const BackgroundGrid<dim> &grid,
       conn.factors_4[p] = r;
   }
   else
+  {
+#ifdef DEBUG
+    unsigned int n_row = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      n_row *= r.n[d];
+    Assert(conn.stride >= n_row, ExcInternalError());
+#endif
     conn.n_nodes[p] =
         tensor_product_row(grid, r, &conn.nodes[p * conn.stride],
                            &conn.N[p * conn.stride], &conn.grad_N[p * conn.stride]);
+  }
 }
 
 /**
