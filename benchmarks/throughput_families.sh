@@ -6,7 +6,8 @@
 #
 # BASE_DIR and NEW_DIR each hold an lme-mpm program and its liblme_mpm.so* (a copy of
 # a build directory's, run with LD_LIBRARY_PATH so that each finds its own library).
-# REPEATS (default 3) rounds, each running every block, family and build once.
+# REPEATS (default 3) rounds, each running every block, family and build once;
+# FAMILIES (default "linear ugimp bspline") names the families.
 set -euo pipefail
 base=$1
 new=$2
@@ -17,7 +18,7 @@ mkdir -p "$out"
 echo "round block family build seconds particle_steps_per_second state_checksum peak_MB"
 for i in $(seq "$repeats"); do
   for block in throughput throughput_3d; do
-    for family in linear ugimp bspline; do
+    for family in ${FAMILIES:-linear ugimp bspline}; do
       for build in base new; do
         dir=$base
         [ "$build" = new ] && dir=$new

@@ -23,10 +23,10 @@ public:
 
   std::string name() const override { return "linear"; }
   unsigned int max_nodes_per_particle() const override { return 1u << dim; }
-  // Kept as factors in 3D only: a 2D row of four nodes is 112 bytes against 80 as
-  // factors, too few saved for the products formed in every pass (the 2D throughput
-  // block ran 4 % slower with factors, the 3D one 17 % faster: doc/performance.md).
-  unsigned int factor_width() const override { return dim == 3 ? 2 : 0; }
+  unsigned int factor_width() const override { return 2; }
+  // Where only the transfers read the rows, the connectivity keeps the cell alone
+  // (8 or 12 bytes against a row of 112 or 320): doc/performance.md.
+  bool rows_are_cell_hats() const override { return true; }
   double support_radius(const BackgroundGrid<dim> &g) const override
   {
     return this->largest_cell_diagonal(g); // the far corner of the particle's cell
@@ -43,20 +43,18 @@ public:
     for (std::size_t p = begin; p < end; ++p)
     {
       const Point<dim> &x = particles.position[p];
-      SeparableRow<dim, 2> r;
-      AssertThrow(grid.locate(x, r.i0),
+      std::array<unsigned int, dim> cell;
+      AssertThrow(grid.locate(x, cell),
                   ExcShapeFunctionFailure("linear", particles.id[p], point_to_string(x),
                                           "the particle is outside the grid"));
-      for (unsigned int d = 0; d < dim; ++d)
+      if (conn.hat_rows_from_cells)
+        conn.cells[p] = cell;
+      else
       {
-        // One division per direction (xi by the inverse: last-bit changes only).
-        const double inv_h = 1 / grid.spacing(d, r.i0[d]);
-        const double xi    = (x[d] - grid.coordinates(d)[r.i0[d]]) * inv_h;
-        r.w[d]             = {{1 - xi, xi}};
-        r.dw[d]            = {{-inv_h, inv_h}};
-        r.n[d]             = 2;
+        SeparableRow<dim, 2> r;
+        hat_row(grid, x, cell, r);
+        store_row(grid, conn, p, r);
       }
-      store_row(grid, conn, p, r);
     }
   }
 

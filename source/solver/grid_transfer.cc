@@ -123,7 +123,9 @@ void GridTransfer<dim>::particles_to_grid(
   // Rows kept as their factors where nothing but the transfers reads them: fewer
   // bytes written here and read by every pass after (doc/performance.md).
   const unsigned int width = shape_function.factor_width();
-  if (!full_rows && (width == 2 || width == 4))
+  if (!full_rows && shape_function.rows_are_cell_hats())
+    conn.resize_cells(particles.size(), particles.position);
+  else if (!full_rows && (width == 2 || width == 4))
     conn.resize_factors(particles.size(), width);
   else
     conn.resize(particles.size(), shape_function.max_nodes_per_particle());

@@ -120,7 +120,8 @@ TEST_P(Families, InternalForcesSumToTheBodyForce)
 TEST(GridTransfer, RowsKeptAsFactorsGiveTheFullRowsStepToTheBit)
 {
   // A whole step's transfers (scatter, strains, forces, the particle update) with the
-  // tensor-product families' rows in full and as their factors: every nodal and
+  // tensor-product families' rows in full and as their factors (linear: as the cells
+  // alone, the rows formed again by each walk): every nodal and
   // particle value equal to the bit (graded grids for linear and uGIMP).
   for (const std::string family : {"linear", "ugimp", "bspline"})
   {
@@ -131,10 +132,13 @@ TEST(GridTransfer, RowsKeptAsFactorsGiveTheFullRowsStepToTheBit)
       for (std::size_t p = 0; p < s.particles.size(); ++p)
         s.particles.velocity[p][0] += 0.1 * std::sin(7 * s.particles.position[p][1]);
       const auto transfer = s.transfer(full_rows);
-      // Linear rows are kept in full in 2D (Linear::factor_width()).
-      EXPECT_EQ(transfer->connectivity().factor_width,
-                full_rows || family == "linear" ? 0u : 4u)
+      // Linear rows are kept as the particles' cells (Linear::rows_are_cell_hats()).
+      const Connectivity<2> &conn = transfer->connectivity();
+      EXPECT_EQ(conn.factor_width, full_rows            ? 0u
+                                   : family == "linear" ? 2u
+                                                        : 4u)
           << family;
+      EXPECT_EQ(conn.hat_rows_from_cells, !full_rows && family == "linear") << family;
       ExplicitNewmark newmark;
       const double dt = 1e-4;
       transfer->predict_rates(newmark, dt, 1e-20);

@@ -121,9 +121,11 @@ TEST(ShapeFunctions, BsplineNeedsAUniformGrid)
 TEST(ShapeFunctions, RowsKeptAsFactorsVisitTheFullRowsNodesAndValues)
 {
   // Every tensor-product family in 2D and 3D, on uniform and graded grids: the rows
-  // compute() keeps as factors give, node by node, the index, value and gradient of
-  // the row it writes in full, to the bit (the transfers read either).
-  const auto check = [](auto dim_tag, const std::string &type, const bool graded)
+  // compute() keeps as factors (linear: also as the cells alone) give, node by node,
+  // the index, value and gradient of the row it writes in full, to the bit (the
+  // transfers read either).
+  const auto check = [](auto dim_tag, const std::string &type, const bool graded,
+                        const bool from_cells = false)
   {
     constexpr int dim      = decltype(dim_tag)::value;
     auto grid              = graded ? graded_grid<dim>() : uniform_grid<dim>(0.1, 6);
@@ -139,9 +141,13 @@ TEST(ShapeFunctions, RowsKeptAsFactorsVisitTheFullRowsNodesAndValues)
     // Linear rows have at most 2 nodes per direction, the others 4.
     const unsigned int width = type == "linear" ? 2 : 4;
     Connectivity<dim> factors;
-    factors.resize_factors(ps.size(), width);
+    if (from_cells)
+      factors.resize_cells(ps.size(), ps.position);
+    else
+      factors.resize_factors(ps.size(), width);
     sf->compute(ps, 0, ps.size(), factors);
     EXPECT_TRUE(factors.nodes.empty() && factors.n_nodes.empty());
+    EXPECT_EQ(factors.cells.empty(), !from_cells);
     std::size_t checked = 0, differ = 0;
     with_rows(*grid, factors,
               [&](const auto &rows)
@@ -165,12 +171,16 @@ TEST(ShapeFunctions, RowsKeptAsFactorsVisitTheFullRowsNodesAndValues)
                 }
               });
     EXPECT_GT(checked, ps.size()) << type;
-    EXPECT_EQ(differ, 0u) << type << " in " << dim << "D";
+    EXPECT_EQ(differ, 0u) << type << " in " << dim << "D"
+                          << (from_cells ? ", rows formed from the cells" : "");
   };
   for (const bool graded : {false, true})
   {
-    check(std::integral_constant<int, 2>(), "linear", graded);
-    check(std::integral_constant<int, 3>(), "linear", graded);
+    for (const bool from_cells : {false, true})
+    {
+      check(std::integral_constant<int, 2>(), "linear", graded, from_cells);
+      check(std::integral_constant<int, 3>(), "linear", graded, from_cells);
+    }
     check(std::integral_constant<int, 2>(), "ugimp", graded);
     check(std::integral_constant<int, 3>(), "ugimp", graded);
   }

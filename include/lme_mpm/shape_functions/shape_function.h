@@ -38,6 +38,8 @@ struct SeparableRow
  * surfaces or mass matrix) and the functions are a tensor product of at most
  * `factor_width` nodes per direction, each row is kept as its factors instead
  * (`factors_2` or `factors_4`); `n_nodes`, `nodes`, `N` and `grad_N` are then empty.
+ * Rows of the linear family (Q1 hats of the particle's cell) are then kept as the cell
+ * alone (`cells`) and formed again from the position by each walk.
  */
 template <int dim>
 struct Connectivity
@@ -45,16 +47,22 @@ struct Connectivity
   unsigned int stride = 0;
   /// 0: full rows; 2 or 4: rows kept as factors in factors_2 or factors_4.
   unsigned int factor_width = 0;
+  /// Q1 hat rows kept as the particle's cell alone (`cells`), formed from the cell and
+  /// the particle's position (`positions`) by every walk: see hat_row().
+  bool hat_rows_from_cells = false;
   std::vector<unsigned int> n_nodes;
   std::vector<unsigned int> nodes;
   std::vector<double> N;
   std::vector<Tensor<1, dim>> grad_N;
   std::vector<SeparableRow<dim, 2>> factors_2;
   std::vector<SeparableRow<dim, 4>> factors_4;
+  std::vector<std::array<unsigned int, dim>> cells;
+  const std::vector<Point<dim>> *positions = nullptr;
   void resize(const std::size_t n_particles, const unsigned int max_nodes)
   {
-    stride       = max_nodes;
-    factor_width = 0;
+    stride              = max_nodes;
+    factor_width        = 0;
+    hat_rows_from_cells = false;
     n_nodes.resize(n_particles);
     nodes.resize(n_particles * stride);
     N.resize(n_particles * stride);
@@ -64,16 +72,35 @@ struct Connectivity
   /// rows' memory, n_nodes included, is released (their walks count the nodes).
   void resize_factors(const std::size_t n_particles, const unsigned int width)
   {
-    stride       = 0;
-    factor_width = width;
-    std::vector<unsigned int>().swap(n_nodes);
-    std::vector<unsigned int>().swap(nodes);
-    std::vector<double>().swap(N);
-    std::vector<Tensor<1, dim>>().swap(grad_N);
+    stride              = 0;
+    factor_width        = width;
+    hat_rows_from_cells = false;
+    release_full_rows();
     if (width == 2)
       factors_2.resize(n_particles);
     else
       factors_4.resize(n_particles);
+  }
+  /// Q1 hat rows kept as each particle's cell; @p x are the particles' positions, which
+  /// must not change while the rows are read.
+  void resize_cells(const std::size_t n_particles, const std::vector<Point<dim>> &x)
+  {
+    stride              = 0;
+    factor_width        = 2;
+    hat_rows_from_cells = true;
+    positions           = &x;
+    release_full_rows();
+    std::vector<SeparableRow<dim, 2>>().swap(factors_2);
+    cells.resize(n_particles);
+  }
+
+private:
+  void release_full_rows()
+  {
+    std::vector<unsigned int>().swap(n_nodes);
+    std::vector<unsigned int>().swap(nodes);
+    std::vector<double>().swap(N);
+    std::vector<Tensor<1, dim>>().swap(grad_N);
   }
 };
 
@@ -119,6 +146,14 @@ public:
    * the caller; store_row() in tensor_product.h). 0 (the default): full rows only.
    */
   virtual unsigned int factor_width() const { return 0; }
+  /**
+   * True only if the rows are the tensor-product Q1 hat functions of the cell that
+   * holds the particle, as hat_row() (tensor_product.h) forms them. Where only the
+   * transfers read the rows, the connectivity then keeps each particle's cell alone
+   * (Connectivity::hat_rows_from_cells) and every walk forms the row from the cell
+   * and the position, which costs less than reading a stored row.
+   */
+  virtual bool rows_are_cell_hats() const { return false; }
 
   /**
    * Upper bound of the distance between a particle and a node of its support (m);

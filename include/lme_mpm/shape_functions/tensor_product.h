@@ -104,6 +104,29 @@ LME_MPM_INLINE_ROW void for_each_node(const BackgroundGrid<dim> &grid,
 }
 
 /**
+ * The Q1 hat functions of cell @p cell at point @p x, as 1D factors per direction.
+ * The one place they are formed, so that a row stored and one formed again from the
+ * cell by a walk (CellRows) agree to the bit.
+ */
+template <int dim>
+LME_MPM_INLINE_ROW void
+hat_row(const BackgroundGrid<dim> &grid, const Point<dim> &x,
+        const std::common_type_t<std::array<unsigned int, dim>> &cell,
+        SeparableRow<dim, 2> &r)
+{
+  r.i0 = cell;
+  for (unsigned int d = 0; d < dim; ++d)
+  {
+    // One division per direction (xi by the inverse: last-bit changes only).
+    const double inv_h = 1 / grid.spacing(d, cell[d]);
+    const double xi    = (x[d] - grid.coordinates(d)[cell[d]]) * inv_h;
+    r.w[d]             = {{1 - xi, xi}};
+    r.dw[d]            = {{-inv_h, inv_h}};
+    r.n[d]             = 2;
+  }
+}
+
+/**
  * Builds a particle's row of the connectivity from 1D weights per direction: node
  * index i0[d] + k along d carries value w[d][k] and derivative dw[d][k], k < n[d].
  * Shared by the separable families (linear, uGIMP, B-spline). Nodes come out in
@@ -201,12 +224,37 @@ struct FactorRows
   }
 };
 
+/// Q1 hat rows formed from each particle's cell and position as they are walked.
+template <int dim>
+struct CellRows
+{
+  const BackgroundGrid<dim> &grid;
+  const std::vector<std::array<unsigned int, dim>> &cells;
+  const std::vector<Point<dim>> &positions;
+  template <class F>
+  LME_MPM_INLINE_ROW void visit(const std::size_t p, F &&f) const
+  {
+    SeparableRow<dim, 2> r;
+    hat_row(grid, positions[p], cells[p], r);
+    for_each_node(grid, r, f);
+  }
+  std::pair<unsigned int, unsigned int> first_and_last(const std::size_t p) const
+  {
+    std::array<unsigned int, dim> last = cells[p];
+    for (unsigned int d = 0; d < dim; ++d)
+      ++last[d];
+    return {grid.node_index(cells[p]), grid.node_index(last)};
+  }
+};
+
 /// Calls f(rows) with the rows of @p conn as one of the types above.
 template <int dim, class F>
 inline void with_rows(const BackgroundGrid<dim> &grid, const Connectivity<dim> &conn,
                       F &&f)
 {
-  if (conn.factor_width == 2)
+  if (conn.hat_rows_from_cells)
+    f(CellRows<dim>{grid, conn.cells, *conn.positions});
+  else if (conn.factor_width == 2)
     f(FactorRows<dim, 2>{grid, conn.factors_2});
   else if (conn.factor_width == 4)
     f(FactorRows<dim, 4>{grid, conn.factors_4});
