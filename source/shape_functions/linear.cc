@@ -25,7 +25,8 @@ public:
   unsigned int max_nodes_per_particle() const override { return 1u << dim; }
   unsigned int factor_width() const override { return 2; }
   // Where only the transfers read the rows, the connectivity keeps the cell alone
-  // (8 or 12 bytes against a row of 112 or 320): doc/performance.md.
+  // (8 or 12 bytes against a full 2D row of 112, or 120 as 3D factors):
+  // doc/performance.md.
   bool rows_are_cell_hats() const override { return true; }
   double support_radius(const BackgroundGrid<dim> &g) const override
   {
