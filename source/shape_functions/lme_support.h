@@ -69,6 +69,10 @@ public:
       for (unsigned int d = 0; d < dim; ++d)
         for (unsigned int i = 0; i < grid.n_nodes_in(d); ++i)
           node_h[d].push_back(grid.nodal_spacing(d, i));
+    for (unsigned int d = 0; d < dim; ++d)
+      set_up_box_walks(d);
+    if (graded)
+      set_up_weight_tables();
     max_nodes_ = 1;
     max_box_1d = 0;
     for (unsigned int d = 0; d < dim; ++d)
@@ -365,22 +369,27 @@ private:
     {
       const auto &c   = grid.coordinates(d);
       const double lo = x[d] - R, hi = x[d] + R;
-      unsigned int i_lo = cell[d];
-      while (i_lo > 0 && c[i_lo - 1] >= lo)
-        --i_lo;
+      // The first node at or above lo and the last at or below hi, walked to from the
+      // cell's bounds on them (BoxWalk), a step or none away.
+      const BoxWalk &walk = walks[d][cell[d]];
+      unsigned int i_lo   = walk.lo;
       while (c[i_lo] < lo)
         ++i_lo;
-      unsigned int i_hi = cell[d] + 1;
-      while (i_hi + 1 < c.size() && c[i_hi + 1] <= hi)
-        ++i_hi;
+      unsigned int i_hi = walk.hi;
       while (c[i_hi] > hi)
         --i_hi;
       if constexpr (Graded)
       {
-        const auto reaches = [&](const unsigned int i)
-        { return std::abs(x[d] - c[i]) <= radius_over_h * node_h[d][i]; };
+        // Trimmed to the nodes that reach x along d, from both ends. The nodes beyond
+        // the cell's reach bounds reach no point of the cell, so the trim passes them
+        // in one jump and tests the same nodes after them.
+        const double *const R_d = node_R[d].data();
+        const auto reaches      = [&](const unsigned int i)
+        { return std::abs(x[d] - c[i]) <= R_d[i]; };
+        i_lo = std::max(i_lo, std::min(walk.reach_lo, i_hi));
         while (i_lo < i_hi && !reaches(i_lo))
           ++i_lo;
+        i_hi = std::min(i_hi, std::max(walk.reach_hi, i_lo));
         while (i_hi > i_lo && !reaches(i_hi))
           --i_hi;
       }
@@ -395,13 +404,110 @@ private:
         yd[k] = (xd - cd[k]) * inv_h;
       if constexpr (Graded)
       {
-        const double *const hd = node_h[d].data() + i_lo;
-        for (unsigned int k = 0; k < count[d]; ++k)
+        if (!weights[d].empty())
         {
-          const double r = h / hd[k];
-          wd[k]          = r * r;
+          // h is the smallest of the cell's spacings: its class is the smallest.
+          unsigned int h_class = cell_class[0][cell[0]];
+          for (unsigned int e = 1; e < dim; ++e)
+            h_class = std::min(h_class, cell_class[e][cell[e]]);
+          const double *const table = weights[d].data() + h_class * c.size() + i_lo;
+          std::copy(table, table + count[d], wd);
+        }
+        else
+        {
+          const double *const hd = node_h[d].data() + i_lo;
+          for (unsigned int k = 0; k < count[d]; ++k)
+          {
+            const double r = h / hd[k];
+            wd[k]          = r * r;
+          }
         }
       }
+    }
+  }
+
+  /**
+   * Bounds of index_box()'s walks for the points of one cell along one direction:
+   * lo <= the first node at or above x - R_max and hi >= the last at or below
+   * x + R_max for every x in the cell (on a uniform grid index_box()'s R is R_max to
+   * rounding); on a graded grid no node below reach_lo or above reach_hi reaches a
+   * point of the cell (|x - c_i| > R_i). Each holds with a margin far above the
+   * rounding of the tests they stand for.
+   */
+  struct BoxWalk
+  {
+    unsigned int lo, hi, reach_lo, reach_hi;
+  };
+
+  /// walks[d], and node_R[d] on a graded grid, of direction @p d.
+  void set_up_box_walks(const unsigned int d)
+  {
+    const std::vector<double> &c = grid.coordinates(d);
+    const unsigned int n_nodes   = c.size();
+    // On a uniform grid no node is trimmed: each reaches the whole box.
+    node_R[d].assign(n_nodes, std::numeric_limits<double>::infinity());
+    if (graded)
+      for (unsigned int i = 0; i < n_nodes; ++i)
+        node_R[d][i] = radius_over_h * node_h[d][i]; // the product reaches() tests
+    const double margin =
+        1e-9 * (std::max(std::abs(c.front()), std::abs(c.back())) + R_max);
+    // Each bound moves one way as the cell does: carried from cell to cell.
+    walks[d].resize(n_nodes - 1);
+    unsigned int lo = 0, reach_lo = 0;
+    for (unsigned int k = 0; k + 1 < n_nodes; ++k)
+    {
+      const double below = c[k] - margin;
+      while (c[lo] < below - R_max)
+        ++lo;
+      while (c[reach_lo] + node_R[d][reach_lo] < below)
+        ++reach_lo;
+      walks[d][k].lo = lo, walks[d][k].reach_lo = reach_lo;
+    }
+    unsigned int hi = n_nodes - 1, reach_hi = n_nodes - 1;
+    for (unsigned int k = n_nodes - 1; k-- > 0;)
+    {
+      const double above = c[k + 1] + margin;
+      while (c[hi] > above + R_max)
+        --hi;
+      while (c[reach_hi] - node_R[d][reach_hi] > above)
+        --reach_hi;
+      walks[d][k].hi = hi, walks[d][k].reach_hi = reach_hi;
+    }
+  }
+
+  /**
+   * The weights (h / h_I)^2 of index_box() per class of cells with equal h, where the
+   * grid has few distinct spacings (a graded grid of a few levels): looked up where
+   * each point would divide. The same division, made once, so the same bits.
+   */
+  void set_up_weight_tables()
+  {
+    std::vector<double> spacings;
+    for (unsigned int d = 0; d < dim; ++d)
+      for (unsigned int k = 0; k < grid.n_cells_in(d); ++k)
+        spacings.push_back(grid.spacing(d, k));
+    std::sort(spacings.begin(), spacings.end());
+    spacings.erase(std::unique(spacings.begin(), spacings.end()), spacings.end());
+    std::size_t entries = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+      entries += spacings.size() * grid.n_nodes_in(d);
+    // A geometrically graded grid has a spacing per cell: divide as before there.
+    if (entries > (std::size_t(1) << 18))
+      return;
+    for (unsigned int d = 0; d < dim; ++d)
+    {
+      for (unsigned int k = 0; k < grid.n_cells_in(d); ++k)
+        cell_class[d].push_back(
+            std::lower_bound(spacings.begin(), spacings.end(), grid.spacing(d, k)) -
+            spacings.begin());
+      const unsigned int n_nodes = grid.n_nodes_in(d);
+      weights[d].resize(spacings.size() * n_nodes);
+      for (std::size_t h_class = 0; h_class < spacings.size(); ++h_class)
+        for (unsigned int i = 0; i < n_nodes; ++i)
+        {
+          const double r                    = spacings[h_class] / node_h[d][i];
+          weights[d][h_class * n_nodes + i] = r * r;
+        }
     }
   }
 
@@ -411,6 +517,13 @@ private:
   double R_max = 0;           ///< largest support radius on this grid
   bool graded  = false;       ///< nodal beta_I (any direction not uniform)
   std::array<std::vector<double>, dim> node_h; ///< nodal spacings (graded grids)
+  /// Their reaches R_I (graded grids; infinite on uniform ones, where none is trimmed).
+  std::array<std::vector<double>, dim> node_R;
+  std::array<std::vector<BoxWalk>, dim> walks; ///< per cell along d
+  /// Class (index into the sorted distinct spacings) of each cell's spacing along d,
+  /// and per class and node along d the weight (h / h_I)^2; empty if too many.
+  std::array<std::vector<unsigned int>, dim> cell_class;
+  std::array<std::vector<double>, dim> weights;
   unsigned int max_nodes_;
   unsigned int max_box_1d;
 };

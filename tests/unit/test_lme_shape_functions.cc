@@ -218,6 +218,52 @@ TEST(ShapeFunctions, LmeSupportMatchesRadius)
                           { check_support_is_ball<3>(g, gamma, 44); });
 }
 
+/// On a graded grid, points on grid lines and one ulp either side of them (where
+/// index_box() starts its walks from the cell's bounds): exactly the nodes within R.
+template <int dim>
+void check_support_on_grid_lines(const BackgroundGrid<dim> &grid, const double gamma,
+                                 const unsigned int seed)
+{
+  std::mt19937 rng(seed);
+  const Settings s = lme_settings<dim>(gamma);
+  const double tol = s.count("LME tolerance") ? std::stod(s.at("LME tolerance")) : 1e-6;
+  auto sf          = make<dim>("lme", grid, s);
+  ParticleStore<dim> ps;
+  const double margin = 1e-3 * grid.min_spacing();
+  for (unsigned int i = 0; i < 60; ++i)
+  {
+    Point<dim> x = random_point(grid, rng, margin);
+    // One or two coordinates on a grid line away from the grid's faces.
+    for (unsigned int d = 0; d < dim; ++d)
+      if (d == i % dim || i % 3 == 0)
+      {
+        const auto &c = grid.coordinates(d);
+        const double line =
+            c[1 + std::uniform_int_distribution<std::size_t>(0, c.size() - 3)(rng)];
+        const int side = static_cast<int>(i / dim) % 3 - 1; // below, on, above
+        x[d] = side == 0 ? line : std::nextafter(line, side < 0 ? -HUGE_VAL : HUGE_VAL);
+      }
+    add_particle(ps, grid, x);
+  }
+  const auto conn = evaluate(*sf, ps);
+  for (std::size_t p = 0; p < ps.size(); ++p)
+  {
+    const auto expected = nodes_in_radius(grid, ps.position[p], gamma, tol);
+    ASSERT_EQ(conn.n_nodes[p], expected.size()) << "particle at " << ps.position[p];
+    EXPECT_TRUE(std::equal(expected.begin(), expected.end(),
+                           conn.nodes.begin() + p * conn.stride))
+        << "particle at " << ps.position[p];
+  }
+}
+
+TEST(ShapeFunctions, LmeSupportOnGradedGridLinesIsTheBall)
+{
+  for_lme_graded_cases<2>([](const BackgroundGrid<2> &g, const double gamma)
+                          { check_support_on_grid_lines<2>(g, gamma, 45); });
+  for_lme_graded_cases<3>([](const BackgroundGrid<3> &g, const double gamma)
+                          { check_support_on_grid_lines<3>(g, gamma, 46); });
+}
+
 TEST(ShapeFunctions, LmeIsContinuousAcrossAGradingStep)
 {
   // Cells halve in size across x = 0.8 and y = 0.8. Just left and just right of the
