@@ -106,13 +106,15 @@ std::unique_ptr<ShapeFunction<2>> make(const std::string &type, ParameterHandler
   return sf;
 }
 
+/// One pass of a family's shape functions over the block (or the graded block).
 void shape_function_pass(benchmark::State &state, const std::string &type,
-                         const bool warm, const std::string &lme_kernel = "auto")
+                         const bool warm, const std::string &lme_kernel = "auto",
+                         const bool graded = false)
 {
   MultithreadInfo::set_thread_limit(1);
   ParameterHandler prm;
-  auto sf = make(type, prm, lme_kernel);
-  auto &P = block().particles;
+  auto sf = make(type, prm, lme_kernel, graded ? &graded_block().grid : nullptr);
+  auto &P = graded ? graded_block().particles : block().particles;
   Connectivity<2> conn;
   conn.resize(P.size(), sf->max_nodes_per_particle());
   sf->compute(P, 0, P.size(), conn); // converged multipliers for the warm start
@@ -120,24 +122,6 @@ void shape_function_pass(benchmark::State &state, const std::string &type,
   {
     if (!warm)
       std::fill(P.lme_lambda.begin(), P.lme_lambda.end(), Tensor<1, 2>());
-    sf->compute(P, 0, P.size(), conn);
-    benchmark::DoNotOptimize(conn.N.data());
-  }
-  state.SetItemsProcessed(state.iterations() * P.size());
-}
-
-/// The LME pass with warm starts on the graded block (the drop weight's grid levels).
-void graded_lme_pass(benchmark::State &state)
-{
-  MultithreadInfo::set_thread_limit(1);
-  ParameterHandler prm;
-  auto sf = make("lme", prm, "auto", &graded_block().grid);
-  auto &P = graded_block().particles;
-  Connectivity<2> conn;
-  conn.resize(P.size(), sf->max_nodes_per_particle());
-  sf->compute(P, 0, P.size(), conn);
-  for (auto _ : state)
-  {
     sf->compute(P, 0, P.size(), conn);
     benchmark::DoNotOptimize(conn.N.data());
   }
@@ -338,7 +322,8 @@ BENCHMARK_CAPTURE(shape_function_pass, lme_warm_scalar, "lme", true, "scalar")
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(shape_function_pass, lme_cold_scalar, "lme", false, "scalar")
     ->Unit(benchmark::kMillisecond);
-BENCHMARK(graded_lme_pass)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(shape_function_pass, lme_warm_graded, "lme", true, "auto", true)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(cell_sort)->Unit(benchmark::kMillisecond);
 BENCHMARK(stress_update)->Unit(benchmark::kMillisecond);
 BENCHMARK(neighbourhood)->Unit(benchmark::kMillisecond);

@@ -112,6 +112,9 @@ public:
   /// The widest support on this grid.
   double widest_radius() const { return R_max; }
   bool is_graded() const { return graded; }
+  /// Whether index_box() looks its weights up (a graded grid of few distinct spacings)
+  /// rather than dividing per point.
+  bool tables_weights() const { return !weights[0].empty(); }
   /// The reach of the node with Cartesian index @p node.
   double node_radius(const std::array<unsigned int, dim> &node) const
   {
@@ -361,6 +364,16 @@ private:
     const double R = Graded ? R_max : radius_over_h * h;
     auto &y1d      = scratch.y1d;
     auto &w1d      = scratch.w1d;
+    // The class of h, the smallest of the cell's spacings, is the smallest of theirs:
+    // its weights' row in the tables (graded grids that keep them).
+    unsigned int h_class = 0;
+    if constexpr (Graded)
+      if (!cell_class[0].empty())
+      {
+        h_class = cell_class[0][cell[0]];
+        for (unsigned int e = 1; e < dim; ++e)
+          h_class = std::min(h_class, cell_class[e][cell[e]]);
+      }
     // The nodes of [x - R, x + R] along each d, walked to from x's cell (a few nodes
     // each way, cheaper than a search of graded coordinates and exact at the ends on
     // any grid); on a graded grid then trimmed at both ends to nodes that reach x
@@ -406,10 +419,6 @@ private:
       {
         if (!weights[d].empty())
         {
-          // h is the smallest of the cell's spacings: its class is the smallest.
-          unsigned int h_class = cell_class[0][cell[0]];
-          for (unsigned int e = 1; e < dim; ++e)
-            h_class = std::min(h_class, cell_class[e][cell[e]]);
           const double *const table = weights[d].data() + h_class * c.size() + i_lo;
           std::copy(table, table + count[d], wd);
         }

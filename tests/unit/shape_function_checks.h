@@ -460,6 +460,28 @@ std::vector<unsigned int> nodes_in_radius(const BackgroundGrid<dim> &grid,
   return nodes;
 }
 
+/// The LME supports of the particles @p ps (settings @p s) are exactly the nodes
+/// within R of each.
+template <int dim>
+void expect_supports_are_balls(const BackgroundGrid<dim> &grid, const double gamma,
+                               const Settings &s, const ParticleStore<dim> &ps)
+{
+  const double tol = s.count("LME tolerance") ? std::stod(s.at("LME tolerance")) : 1e-6;
+  auto sf          = make<dim>("lme", grid, s);
+  ParticleStore<dim> particles = ps;
+  const auto conn              = evaluate(*sf, particles);
+  for (std::size_t p = 0; p < ps.size(); ++p)
+  {
+    const auto expected = nodes_in_radius(grid, ps.position[p], gamma, tol);
+    ASSERT_EQ(conn.n_nodes[p], expected.size())
+        << "tolerance " << tol << ", particle at " << ps.position[p];
+    EXPECT_TRUE(std::equal(expected.begin(), expected.end(),
+                           conn.nodes.begin() + p * conn.stride))
+        << "particle at " << ps.position[p];
+    EXPECT_LE(conn.n_nodes[p], sf->max_nodes_per_particle());
+  }
+}
+
 /// LME candidates anywhere (boundaries, graded cells) are exactly the nodes within R.
 template <int dim>
 void check_support_is_ball(const BackgroundGrid<dim> &grid, const double gamma,
@@ -471,20 +493,10 @@ void check_support_is_ball(const BackgroundGrid<dim> &grid, const double gamma,
     Settings s = lme_settings<dim>(gamma);
     if (wide)
       s["LME tolerance"] = "1e-12";
-    const double tol = s.count("LME tolerance") ? std::stod(s["LME tolerance"]) : 1e-6;
-    auto sf          = make<dim>("lme", grid, s);
     ParticleStore<dim> ps;
     for (unsigned int i = 0; i < 30; ++i)
       add_particle(ps, grid, random_point(grid, rng, 1e-3 * grid.min_spacing()));
-    const auto conn = evaluate(*sf, ps);
-    for (std::size_t p = 0; p < ps.size(); ++p)
-    {
-      const auto expected = nodes_in_radius(grid, ps.position[p], gamma, tol);
-      ASSERT_EQ(conn.n_nodes[p], expected.size()) << "tolerance " << tol;
-      EXPECT_TRUE(std::equal(expected.begin(), expected.end(),
-                             conn.nodes.begin() + p * conn.stride));
-      EXPECT_LE(conn.n_nodes[p], sf->max_nodes_per_particle());
-    }
+    expect_supports_are_balls<dim>(grid, gamma, s, ps);
   }
 }
 

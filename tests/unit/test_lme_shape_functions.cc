@@ -3,6 +3,8 @@
 
 #include "shape_function_checks.h"
 
+#include "../../source/shape_functions/lme_support.h"
+
 using namespace lme_mpm;
 using namespace shape_function_checks;
 
@@ -225,9 +227,6 @@ void check_support_on_grid_lines(const BackgroundGrid<dim> &grid, const double g
                                  const unsigned int seed)
 {
   std::mt19937 rng(seed);
-  const Settings s = lme_settings<dim>(gamma);
-  const double tol = s.count("LME tolerance") ? std::stod(s.at("LME tolerance")) : 1e-6;
-  auto sf          = make<dim>("lme", grid, s);
   ParticleStore<dim> ps;
   const double margin = 1e-3 * grid.min_spacing();
   for (unsigned int i = 0; i < 60; ++i)
@@ -245,15 +244,7 @@ void check_support_on_grid_lines(const BackgroundGrid<dim> &grid, const double g
       }
     add_particle(ps, grid, x);
   }
-  const auto conn = evaluate(*sf, ps);
-  for (std::size_t p = 0; p < ps.size(); ++p)
-  {
-    const auto expected = nodes_in_radius(grid, ps.position[p], gamma, tol);
-    ASSERT_EQ(conn.n_nodes[p], expected.size()) << "particle at " << ps.position[p];
-    EXPECT_TRUE(std::equal(expected.begin(), expected.end(),
-                           conn.nodes.begin() + p * conn.stride))
-        << "particle at " << ps.position[p];
-  }
+  expect_supports_are_balls<dim>(grid, gamma, lme_settings<dim>(gamma), ps);
 }
 
 TEST(ShapeFunctions, LmeSupportOnGradedGridLinesIsTheBall)
@@ -262,6 +253,23 @@ TEST(ShapeFunctions, LmeSupportOnGradedGridLinesIsTheBall)
                           { check_support_on_grid_lines<2>(g, gamma, 45); });
   for_lme_graded_cases<3>([](const BackgroundGrid<3> &g, const double gamma)
                           { check_support_on_grid_lines<3>(g, gamma, 46); });
+}
+
+TEST(ShapeFunctions, LmeSupportIsTheBallWhereEveryCellHasItsOwnSpacing)
+{
+  // A geometric grading: a spacing per cell, too many classes for the weight tables,
+  // so index_box() divides per point (the other path of the graded weights).
+  BackgroundGrid<2> grid;
+  std::array<std::vector<double>, 2> steps;
+  for (unsigned int d = 0; d < 2; ++d)
+    for (unsigned int i = 0; i < 300; ++i)
+      steps[d].push_back(0.01 * std::pow(1.002, i + 150.0 * d));
+  grid.reinit(Point<2>(), steps);
+  EXPECT_FALSE(shape_functions::LmeSupport<2>(grid, 2.77, 1.8).tables_weights());
+  EXPECT_TRUE(
+      shape_functions::LmeSupport<2>(*graded_grid<2>(), 2.77, 1.8).tables_weights());
+  check_support_is_ball<2>(grid, 1.8, 47);
+  check_support_on_grid_lines<2>(grid, 1.8, 48);
 }
 
 TEST(ShapeFunctions, LmeIsContinuousAcrossAGradingStep)
