@@ -26,7 +26,7 @@ namespace fracture
 struct EigensofteningEntries
 {
   double tensile_strength = 3e6, critical_opening = 0, band_width = 0;
-  std::string law, damage_rule, damage_form;
+  std::string law, damage_rule, damage_form, onset;
 
   void entries(EntryList &list)
   {
@@ -59,6 +59,17 @@ struct EigensofteningEntries
              "integral sees the particle's own body only); 'paper': chi = 1 - g((eps_I "
              "- eps_onset) h_eps), the draft's eq. 22 (dissipates more than G_F: "
              "doc/theory.md).");
+    list.add("Onset", onset, "neighbourhood mean",
+             Patterns::Selection("neighbourhood mean|own stress"),
+             "When a particle starts to soften. 'neighbourhood mean' (the paper's): the "
+             "mass-weighted mean of the max principal stress over its "
+             "epsilon-neighbourhood exceeds f_t (failed neighbours count with zero "
+             "stress; with 'crack oriented' damage the mean is over the uncracked "
+             "neighbours). 'own stress': its own max principal stress exceeds f_t, the "
+             "onset of the crack band model (Bazant and Oh 1983): a notch tip starts "
+             "softening when its stress reaches the strength, and the process zone "
+             "grows before the peak as in a cohesive crack; the damage rule keeps the "
+             "dissipation at G_F per unit crack area (doc/theory.md).");
     list.add("Damage form", damage_form, "isotropic",
              Patterns::Selection("isotropic|crack oriented"),
              "What the damage acts on. 'isotropic': the whole stress, (1 - chi) sigma, "
@@ -104,6 +115,7 @@ public:
     paper_rule    = in.damage_rule == "paper";
     measured_band = in.damage_rule == "measured band";
     oriented      = in.damage_form == "crack oriented";
+    own_onset     = in.onset == "own stress";
     coupling      = c.lame_coupling;
     // A band wider than M / (f_t max|g'|) snaps back: the softening branch cannot be
     // followed. Checked with the P-wave modulus here and per particle at onset.
@@ -174,20 +186,10 @@ public:
       const double eps2 = eps * eps;
       if (P.onset_strain[p] == 0)
       {
-        // With oriented damage a cracked neighbour's stress follows its crack's law,
-        // not the field the onset samples: the mean is over the intact ones.
-        double ms = 0, m = 0;
-        for (auto q = nb.begin(p); q != nb.end(p); ++q)
-          if (P.position[*q].distance_square(P.position[p]) <= eps2 &&
-              !(oriented && F.cracked[*q]))
-          {
-            ms += P.mass[*q] * F.max_principal_stress[*q];
-            m += P.mass[*q];
-          }
+        if (!reaches_onset(P, nb, F, p, eps2))
+          continue;
         // Onset needs the particle itself in tension, so that its modulus is known
         // (its drive is found only where the mean has reached the strength).
-        if (!(ms > f_t * P.strength[p] * m))
-          continue;
         const auto [eps_I, sig_I] = damage_drive(P, p, F.max_principal_stress[p]);
         if (!(eps_I > 0 && sig_I > 0))
           continue;
@@ -274,6 +276,27 @@ public:
   }
 
 private:
+  /// Whether intact particle @p p starts to soften (the entry 'Onset').
+  bool reaches_onset(const ParticleStore<dim> &P, const Neighbourhood<dim> &nb,
+                     const FractureFields &F, const std::size_t p,
+                     const double eps2) const
+  {
+    const double strength = f_t * P.strength[p];
+    if (own_onset)
+      return F.max_principal_stress[p] > strength;
+    // With oriented damage a cracked neighbour's stress follows its crack's law,
+    // not the field the onset samples: the mean is over the intact ones.
+    double ms = 0, m = 0;
+    for (auto q = nb.begin(p); q != nb.end(p); ++q)
+      if (P.position[*q].distance_square(P.position[p]) <= eps2 &&
+          !(oriented && F.cracked[*q]))
+      {
+        ms += P.mass[*q] * F.max_principal_stress[*q];
+        m += P.mass[*q];
+      }
+    return ms > strength * m;
+  }
+
   /**
    * The damage of softening particle @p p from the opening of the crack band it lies
    * in. Across a band the crack strains of its particles (the part of the max
@@ -475,6 +498,8 @@ private:
   /// the crack direction (a tenth of a cell), and its half width across (a quarter).
   static constexpr double line_slack = 0.1, line_half_width = 0.25;
   bool paper_rule = false, measured_band = false;
+  /// Onset on the particle's own stress rather than its neighbourhood's mean.
+  bool own_onset = false;
   std::unique_ptr<SofteningLaw> law;
   mutable std::atomic<unsigned long> snap_back_count{0};
 };

@@ -9,6 +9,7 @@
 #include <lme_mpm/fracture/fracture_model.h>
 #include <lme_mpm/fracture/neighbourhood.h>
 #include <lme_mpm/fracture/softening_law.h>
+#include <lme_mpm/materials/material_set.h>
 
 #include "sorted_particles.h"
 #include "test_helpers.h"
@@ -34,6 +35,36 @@ const ParticleStore<2> &sorted_on_one_cell(ParticleStore<2> &P, BackgroundGrid<2
   P.sort_by_cell(1);
   return P;
 }
+
+/// Eigensoftening (f_t = 3 MPa, the default eps = 2 h) on material 1, coupled to a
+/// uniform grid of cells h = 0.01 from @p lower, @p nx cells along x and 20 along y.
+struct EigensofteningOnAGrid
+{
+  EigensofteningOnAGrid(const Point<2> &lower, const unsigned int nx,
+                        const std::string &onset)
+  {
+    ParameterHandler prm;
+    MaterialSet<2>::declare_parameters(prm, 1);
+    FractureCoupling<2>::declare_parameters(prm, 1);
+    prm.parse_input_from_string("subsection Material 1\n"
+                                "  set Density = 2400\n"
+                                "  subsection Fracture\n"
+                                "    set Model            = eigensoftening\n"
+                                "    set Tensile strength = 3e6\n"
+                                "    set Onset            = " +
+                                onset +
+                                "\n"
+                                "  end\n"
+                                "end\n");
+    materials.parse_parameters(prm, 1, false);
+    grid.reinit(lower, {{std::vector<double>(nx, 0.01), std::vector<double>(20, 0.01)}});
+    coupling.parse_parameters(prm, materials, grid, 1);
+  }
+
+  MaterialSet<2> materials;
+  BackgroundGrid<2> grid;
+  FractureCoupling<2> coupling;
+};
 } // namespace
 
 TEST(SofteningLaws, AreaEqualsFractureEnergy)
@@ -212,23 +243,9 @@ TEST(Eigensoftening, OnsetAveragesOverTheParticlesOwnBodyOnly)
   // x = 0: the platen at ten times f_t, the specimen in tension below it. Within the
   // neighbourhood (eps = 2 h = 0.02) the mixed average would exceed f_t; the
   // specimen's own does not, so only the platen's particles reach onset.
-  ParameterHandler prm;
-  MaterialSet<2>::declare_parameters(prm, 1);
-  FractureCoupling<2>::declare_parameters(prm, 1);
-  prm.enter_subsection("Material 1");
-  prm.set("Density", "2400");
-  prm.enter_subsection("Fracture");
-  prm.set("Model", "eigensoftening");
-  prm.set("Tensile strength", "3e6");
-  prm.leave_subsection();
-  prm.leave_subsection();
-  MaterialSet<2> materials;
-  materials.parse_parameters(prm, 1, false);
-  BackgroundGrid<2> grid; // uniform, h = 0.01
-  grid.reinit(Point<2>(-0.1, -0.1),
-              {{std::vector<double>(20, 0.01), std::vector<double>(20, 0.01)}});
-  FractureCoupling<2> coupling;
-  coupling.parse_parameters(prm, materials, grid, 1);
+  EigensofteningOnAGrid on_grid(Point<2>(-0.1, -0.1), 20, "neighbourhood mean");
+  auto &grid     = on_grid.grid;
+  auto &coupling = on_grid.coupling;
 
   ParticleStore<2> store;
   for (unsigned int i = 0; i < 8; ++i)
@@ -248,4 +265,50 @@ TEST(Eigensoftening, OnsetAveragesOverTheParticlesOwnBodyOnly)
     else
       EXPECT_EQ(store.onset_strain[p], 0.0)
           << "specimen particle " << p << " at x = " << store.position[p][0];
+}
+
+namespace
+{
+/**
+ * A hot spot: particles on a 5 mm lattice, one at 3 f_t (a notch tip's own stress)
+ * among neighbours at 0.2 f_t, and one at 0.9 f_t among neighbours at 2 f_t, far
+ * apart. Returns which particles reached onset with the entry 'Onset' = @p onset.
+ */
+std::vector<bool> onsets_of_hot_spots(const std::string &onset)
+{
+  EigensofteningOnAGrid on_grid(Point<2>(-0.2, -0.1), 40, onset);
+  auto &grid     = on_grid.grid;
+  auto &coupling = on_grid.coupling;
+
+  ParticleStore<2> store;
+  const Point<2> cold_tip(-0.1, 0), hot_ring(0.1, 0);
+  for (int i = -4; i <= 4; ++i)
+    for (int j = -4; j <= 4; ++j)
+      for (const Point<2> &centre : {cold_tip, hot_ring})
+      {
+        const bool at_centre = i == 0 && j == 0;
+        const bool tip       = centre == cold_tip;
+        const double s = tip ? (at_centre ? 9e6 : 0.6e6) : (at_centre ? 2.7e6 : 6e6);
+        const auto p = store.add(centre + Point<2>(0.005 * i, 0.005 * j), 1.0, 1.0, 0, 0);
+        store.stress[p][0][0] = s;
+        store.strain[p][0][0] = s / 30e9;
+      }
+  lme_mpm_test::sort_by_grid_cells(store, grid);
+  coupling.update(store);
+  std::vector<bool> result;
+  for (const Point<2> &centre : {cold_tip, hot_ring})
+    for (std::size_t p = 0; p < store.size(); ++p)
+      if (store.position[p].distance(centre) < 1e-12)
+        result.push_back(store.onset_strain[p] > 0);
+  return result;
+}
+} // namespace
+
+TEST(Eigensoftening, OnsetOnTheNeighbourhoodMeanOrOnTheParticlesOwnStress)
+{
+  // The paper's onset: the tip at 3 f_t does not start (its neighbourhood's mean is
+  // below f_t), the particle at 0.9 f_t among particles at 2 f_t does.
+  EXPECT_EQ(onsets_of_hot_spots("neighbourhood mean"), std::vector<bool>({false, true}));
+  // The crack band model's onset: each on its own stress.
+  EXPECT_EQ(onsets_of_hot_spots("own stress"), std::vector<bool>({true, false}));
 }
