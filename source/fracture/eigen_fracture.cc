@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 namespace lme_mpm
@@ -444,8 +445,17 @@ private:
     { return s0 * (law->traction_ratio(r * w) - 1) / M + w / h - strain_beyond; };
     if (F(w_end) <= 0)
       return w_end;
+    // F' >= 1/h - s0 r max|g'| / M, positive inside the snap-back limit (update()
+    // breaks the particle at once beyond it). Rounding of F: a few ulps of each term,
+    // with g within a few ulps of 1 (the built-in laws); 64 ulps are allowed.
+    const double slope = (1 / h - s0 * r * law->max_slope() / M) * (1 - 1e-9);
+    const auto error   = [&](const double w)
+    {
+      return 64 * std::numeric_limits<double>::epsilon() *
+             (s0 / M + std::abs(w) / h + std::abs(strain_beyond));
+    };
     double lo = 0, hi = w_end;
-    bisect(lo, hi, 60, [&](const double x) { return !(F(x) > 0); });
+    bisect_increasing(lo, hi, 60, F, slope, error);
     return 0.5 * (lo + hi);
   }
 

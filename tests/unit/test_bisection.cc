@@ -3,9 +3,11 @@
 
 #include <lme_mpm/base/bisection.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <iostream>
 #include <limits>
 #include <random>
 
@@ -86,4 +88,73 @@ TEST(Bisection, FindsTheRootOfAMonotoneFunction)
   bisect(lo, hi, 60, [&](const double x) { return !(F(x) > 0); });
   EXPECT_LE(hi - lo, 2 * std::numeric_limits<double>::epsilon());
   EXPECT_NEAR(0.5 * (lo + hi), 0.6823278038280193, 1e-15);
+}
+
+TEST(Bisection, AnIncreasingFunctionAskedNearItsRootGivesTheSameEnds)
+{
+  // The opening solve of eigensoftening, F(w) = s0 (g(r w) - 1) / M + w / h - e, for
+  // linear, bilinear and exponential laws g, with bands from a hundredth of the
+  // snap-back limit to just inside it, and strains from the first step of softening
+  // to beyond the law's end.
+  std::mt19937_64 random(20261207);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const double eps          = std::numeric_limits<double>::epsilon();
+  unsigned long asked_plain = 0, asked_near = 0;
+  unsigned int solves = 0;
+  for (int trial = 0; trial < 30000; ++trial)
+  {
+    const int law          = trial % 3;
+    const double w_c       = 5e-5 * (0.5 + unit(random)),
+                 s0_over_M = 1e-4 * (0.5 + unit(random)), r = 0.5 + unit(random);
+    const double w_k = w_c * (0.1 + 0.3 * unit(random)); // the bilinear kink
+    const auto g     = [&](const double x)
+    {
+      if (law == 0)
+        return x >= w_c ? 0.0 : 1 - x / w_c;
+      if (law == 1)
+        return x <= w_k ? 1 - (2.0 / 3.0) * x / w_k
+                        : (x >= w_c ? 0.0 : (1.0 / 3.0) * (w_c - x) / (w_c - w_k));
+      return x >= w_c ? 0.0 : std::exp(-6.9 * x / w_c);
+    };
+    const double max_slope = law == 0 ? 1 / w_c
+                             : law == 1
+                                 ? std::max((2.0 / 3.0) / w_k, (1.0 / 3.0) / (w_c - w_k))
+                                 : 6.9 / w_c;
+    // h from the snap-back limit h_max = 1 / (s0 r max|g'| / M) down to 1 % of it.
+    const double h_max = 1 / (s0_over_M * r * max_slope);
+    const double h = h_max * (trial % 50 == 0 ? 1 - 1e-6 : 0.01 + 0.98 * unit(random));
+    const double w_end = w_c / r;
+    const double e = std::ldexp(unit(random), -int(60 * unit(random))) * 1.2 * w_end / h;
+    unsigned long *asked = nullptr;
+    const auto F         = [&](const double w)
+    {
+      ++*asked;
+      return s0_over_M * (g(r * w) - 1) + w / h - e;
+    };
+    asked = &asked_plain;
+    if (!(F(w_end) > 0))
+      continue;
+    double lo0 = 0, hi0 = w_end, lo1 = 0, hi1 = w_end;
+    bisect(lo0, hi0, 60, [&](const double x) { return !(F(x) > 0); });
+    asked              = &asked_near;
+    const double slope = (1 / h - s0_over_M * r * max_slope) * (1 - 1e-9);
+    bisect_increasing(lo1, hi1, 60, F, slope,
+                      [&](const double w)
+                      { return 64 * eps * (s0_over_M + std::abs(w) / h + std::abs(e)); });
+    EXPECT_EQ(bits(lo0), bits(lo1)) << trial;
+    EXPECT_EQ(bits(hi0), bits(hi1)) << trial;
+    ++solves;
+  }
+  EXPECT_GT(solves, 20000u);
+  std::cout << "evaluations per solve: bisect " << double(asked_plain) / solves
+            << ", near the root " << double(asked_near) / solves << std::endl;
+  EXPECT_LT(asked_near, asked_plain / 3);
+
+  // Without a positive slope bound it bisects the function itself.
+  double lo0 = 0, hi0 = 1, lo1 = 0, hi1 = 1;
+  const auto cubic = [](const double x) { return (x - 0.3) * (x - 0.3) * (x - 0.3); };
+  bisect(lo0, hi0, 60, [&](const double x) { return !(cubic(x) > 0); });
+  bisect_increasing(lo1, hi1, 60, cubic, 0.0, [](double) { return 0.0; });
+  EXPECT_EQ(bits(lo0), bits(lo1));
+  EXPECT_EQ(bits(hi0), bits(hi1));
 }

@@ -1,6 +1,9 @@
 #ifndef lme_mpm_base_bisection_h
 #define lme_mpm_base_bisection_h
 
+#include <algorithm>
+#include <cmath>
+
 namespace lme_mpm
 {
 /**
@@ -40,6 +43,66 @@ void bisect(double &lo, double &hi, const int halvings, const Side &moves_lo)
     second = next;
     ++i;
   }
+}
+
+/**
+ * bisect() for an increasing function @p f, moves_lo(m) = !(f(m) > 0), ending at the
+ * same ends bit for bit while asking @p f only where the sign of its rounded value is
+ * in doubt. A root estimate w (regula falsi, the Illinois variant: exact in one step
+ * for a linear @p f, a few steps for a smooth one) and a lower bound @p slope > 0 of
+ * f' on [@p lo, @p hi] answer every midpoint m with
+ * slope |m - w| > |f(w)| + error(w) + error(m), where @p error(x) bounds the rounding
+ * error of f(x): there the exact f(m) has the sign of m - w and a magnitude beyond
+ * error(m), so the rounded one has that sign too. The other midpoints, within a few
+ * rounding errors of the root, ask @p f. Without a positive @p slope, or if f does not
+ * change sign on [lo, hi], it is bisect() of @p f itself.
+ */
+template <class Function, class ErrorBound>
+void bisect_increasing(double &lo, double &hi, const int halvings, const Function &f,
+                       const double slope, const ErrorBound &error)
+{
+  const auto asks_f = [&](const double m) { return !(f(m) > 0); };
+  double a = lo, b = hi, fa = f(a), fb = f(b);
+  if (!(slope > 0 && fa < 0 && fb > 0))
+  {
+    bisect(lo, hi, halvings, asks_f);
+    return;
+  }
+  // The evaluated point nearest the root (smallest |f|) is the estimate.
+  double w = std::abs(fa) < std::abs(fb) ? a : b, fw = std::min(std::abs(fa), fb);
+  int kept = 0; // the end the last step kept: -1 a, 1 b
+  for (int i = 0; i < 32; ++i)
+  {
+    const double x = (a * fb - b * fa) / (fb - fa);
+    if (!(x > a && x < b))
+      break;
+    const double fx = f(x);
+    if (std::abs(fx) < fw)
+      w = x, fw = std::abs(fx);
+    if (!(std::abs(fx) > error(x)))
+      break;
+    if (fx > 0)
+    {
+      b = x, fb = fx;
+      if (kept == -1)
+        fa *= 0.5;
+      kept = -1;
+    }
+    else
+    {
+      a = x, fa = fx;
+      if (kept == 1)
+        fb *= 0.5;
+      kept = 1;
+    }
+  }
+  const double known = fw + error(w);
+  bisect(lo, hi, halvings,
+         [&](const double m)
+         {
+           const double d = m - w;
+           return slope * std::abs(d) > known + error(m) ? d < 0 : asks_f(m);
+         });
 }
 } // namespace lme_mpm
 

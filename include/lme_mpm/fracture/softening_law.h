@@ -28,7 +28,9 @@ public:
   virtual ~SofteningLaw()          = default;
   virtual std::string name() const = 0;
   /// g(w) = sigma / f_t. The opening solves ask it at more openings than they keep
-  /// (bisect()), so it must depend on @p w alone.
+  /// (bisect()), so it must depend on @p w alone. Eigensoftening's opening solve asks
+  /// it only near the root (bisect_increasing()), which gives the bits of the full
+  /// bisection where g is within a few ulps of its exact value.
   virtual double traction_ratio(double w) const = 0;
   /// Opening where the traction vanishes (an unbounded law stops at g = 1e-3).
   virtual double critical_opening() const = 0;
