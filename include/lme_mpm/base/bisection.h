@@ -97,11 +97,30 @@ void bisect_increasing(double &lo, double &hi, const int halvings, const Functio
     }
   }
   const double known = fw + error(w);
-  bisect(lo, hi, halvings,
+  const auto certain = [&](const double m, const double d)
+  { return slope * std::abs(d) > known + error(m); };
+  // While the midpoints are far from w, one halving at a time with one comparison
+  // each (the ends of bisect(), which equal those of one halving at a time). The ends
+  // are chosen without a branch: which one moves is a coin toss the processor could
+  // not predict.
+  int done = 0;
+  while (done < halvings && hi > lo)
+  {
+    const double mid = 0.5 * (lo + hi), d = mid - w;
+    if (!certain(mid, d))
+      break;
+    const bool below = d < 0;
+    if (mid == (below ? lo : hi))
+      return;
+    lo = below ? mid : lo;
+    hi = below ? hi : mid;
+    ++done;
+  }
+  bisect(lo, hi, halvings - done,
          [&](const double m)
          {
            const double d = m - w;
-           return slope * std::abs(d) > known + error(m) ? d < 0 : asks_f(m);
+           return certain(m, d) ? d < 0 : asks_f(m);
          });
 }
 } // namespace lme_mpm
