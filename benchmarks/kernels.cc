@@ -12,7 +12,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include <lme_mpm/base/bisection.h>
 #include <lme_mpm/fracture/neighbourhood.h>
+#include <lme_mpm/fracture/softening_law.h>
 #include <lme_mpm/materials/linear_elastic.h>
 #include <lme_mpm/shape_functions/lme_simd.h>
 #include <lme_mpm/shape_functions/shape_function.h>
@@ -21,6 +23,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <sstream>
 
@@ -283,6 +286,47 @@ __attribute__((target("avx2,fma"))) void machine_fma_avx2(benchmark::State &stat
 }
 #endif
 
+/// Eigensoftening's crack opening solve, F(w) = s0 (g(w) - 1) / M + w / h - e = 0, with
+/// the built-in linear law and the drop weight's numbers (f_t = 5.4 MPa, G_F = 141 N/m,
+/// E = 31 GPa, h = 1.875 mm), strains from the first step of softening to the law's
+/// end: the full bisection, or the one that asks the law only near the root (the same
+/// ends). Items are solves.
+void opening_solve(benchmark::State &state, const bool near_root)
+{
+  ParameterHandler prm;
+  SofteningContext c;
+  c.tensile_strength = 5.4e6;
+  c.fracture_energy  = 141;
+  c.section          = "benchmark";
+  const auto law     = SofteningLawRegistry::instance().create("linear", prm, c);
+  const double w_c = law->critical_opening(), M = 31e9, s0 = 5.4e6, h = 1.875e-3;
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<double> strains(20000);
+  for (double &e : strains)
+    e = std::ldexp(unit(rng), -int(20 * unit(rng))) * w_c / h;
+  const double slope = (1 / h - s0 * law->max_slope() / M) * (1 - 1e-9);
+  for (auto _ : state)
+    for (const double e : strains)
+    {
+      const auto F = [&](const double w)
+      { return s0 * (law->traction_ratio(w) - 1) / M + w / h - e; };
+      double lo = 0, hi = w_c;
+      if (near_root)
+        bisect_increasing(lo, hi, 60, F, slope,
+                          [&](const double w)
+                          {
+                            return 64 * std::numeric_limits<double>::epsilon() *
+                                   (s0 / M + std::abs(w) / h + std::abs(e));
+                          });
+      else
+        bisect(lo, hi, 60, [&](const double x) { return !(F(x) > 0); });
+      benchmark::DoNotOptimize(lo);
+      benchmark::DoNotOptimize(hi);
+    }
+  state.SetItemsProcessed(state.iterations() * strains.size());
+}
+
 /// glibc exp over independent arguments (the LME kernel's calls): items are calls.
 void machine_exp(benchmark::State &state)
 {
@@ -324,6 +368,8 @@ BENCHMARK_CAPTURE(shape_function_pass, lme_cold_scalar, "lme", false, "scalar")
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(shape_function_pass, lme_warm_graded, "lme", true, "auto", true)
     ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(opening_solve, bisect, false)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(opening_solve, near_root, true)->Unit(benchmark::kMicrosecond);
 BENCHMARK(cell_sort)->Unit(benchmark::kMillisecond);
 BENCHMARK(stress_update)->Unit(benchmark::kMillisecond);
 BENCHMARK(neighbourhood)->Unit(benchmark::kMillisecond);
