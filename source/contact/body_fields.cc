@@ -13,7 +13,8 @@ BodyFields<dim>::BodyFields(const BackgroundGrid<dim> &grid, const Bodies<dim> &
 template <int dim>
 void BodyFields<dim>::set_up(const bool active, const double reach)
 {
-  is_active = active;
+  is_active   = active;
+  marks_valid = false;
   // The nodes a particle in cell i can reach along each direction: those within the
   // support radius of the cell (with a round-off margin).
   for (unsigned int d = 0; d < dim; ++d)
@@ -36,6 +37,11 @@ void BodyFields<dim>::set_up(const bool active, const double reach)
 template <int dim>
 void BodyFields<dim>::mark_reached_nodes(const ParticleStore<dim> &store)
 {
+  // The marks follow from the particles' cells and bodies alone: while neither has
+  // changed (a slowly loaded specimen moves a particle to another cell once in many
+  // steps) they stand, and the comparison costs a fraction of the marking.
+  if (marks_valid && store.cell == marked_cells && store.body_id == marked_bodies)
+    return;
   node_bodies.resize(grid.n_nodes(), 0);
   for (const unsigned int I : marked)
     node_bodies[I] = 0;
@@ -76,6 +82,9 @@ void BodyFields<dim>::mark_reached_nodes(const ParticleStore<dim> &store)
     }
   }
   std::sort(marked.begin(), marked.end());
+  marked_cells  = store.cell;
+  marked_bodies = store.body_id;
+  marks_valid   = true;
 }
 
 template <int dim>
@@ -120,7 +129,25 @@ void BodyFields<dim>::separate(Connectivity<dim> &conn, const ParticleStore<dim>
   {
     const unsigned int body = store.body_id[p];
     const std::size_t o     = p * conn.stride;
-    std::uint8_t t          = 0;
+    // Most particles are away from other bodies: one pass without branches finds that
+    // each of their nodes holds their body alone (or is a crack's second field, which
+    // stays with the cracked body), and the row stays as it is.
+    const std::uint32_t own = std::uint32_t(1) << body;
+    std::uint32_t in_all = own, others = 0;
+    for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
+    {
+      const unsigned int I  = conn.nodes[o + k];
+      const bool grid_node  = I < n_grid;
+      const std::uint32_t m = grid_node ? node_bodies[grid_node ? I : 0] : own;
+      in_all &= m;
+      others |= m & ~own;
+    }
+    if (in_all == own && others == 0)
+    {
+      touches[p] = 0;
+      continue;
+    }
+    std::uint8_t t = 0;
     for (unsigned int k = 0; k < conn.n_nodes[p]; ++k)
     {
       const unsigned int I = conn.nodes[o + k];

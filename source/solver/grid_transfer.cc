@@ -137,11 +137,11 @@ void GridTransfer<dim>::particles_to_grid(
         shape_function.compute(particles, b, e, conn);
         const auto [chunk_below, chunk_above] = support_reach(b, e);
         remap(b, e);
-        if (chunk_below <= below && chunk_above <= above)
-          scatter_particles(b, e);
         raise_to(reach_below, chunk_below);
         raise_to(reach_above, chunk_above);
-      });
+        return chunk_below <= below && chunk_above <= above;
+      },
+      [&](const std::size_t b, const std::size_t e) { scatter_particles(b, e); });
   unsigned int new_below = reach_below.load(), new_above = reach_above.load();
   if (ranks)
   {
@@ -257,69 +257,73 @@ double GridTransfer<dim>::grid_to_particles(const ExplicitNewmark &newmark,
   std::atomic<double> fastest{0.0};
   const bool xpic = xpic_order > 0;
   // A constant body force does work m b . dx over the step's displacement exactly.
-  const double body_work = parallel::deterministic_sum<double>(
-      n,
-      [&](const std::size_t b, const std::size_t e)
-      {
-        double pw = 0, v2 = 0;
-        with_rows(
-            grid, conn,
-            [&](const auto &rows)
-            {
-              for (std::size_t p = b; p < e; ++p)
-              {
-                // Ghosts (copies of another rank's particles) are not updated: the
-                // exchange that ends the step writes their owners' values over them, and
-                // nothing reads them before it.
-                if (particles.ghost[p])
-                  continue;
-                // The interpolations in one walk over the row, each summed in its order.
-                // The rates are those the strains were taken from (nothing changes them
-                // after the predictor): interpolated here, not stored per particle.
-                Tensor<1, dim> a, v_start, rate;
-                // Two walks, one chosen per particle: a test of xpic inside the walk
-                // made this pass twice as slow (2D B-splines).
-                if (xpic)
-                  rows.visit(
-                      p,
-                      [&](const unsigned int I, const double N, const Tensor<1, dim> &)
-                      {
-                        a += N * fields.acceleration[I];
-                        v_start += N * start_velocity[I];
-                        rate += N * fields.rate[I];
-                      });
-                else
-                  rows.visit(
-                      p,
-                      [&](const unsigned int I, const double N, const Tensor<1, dim> &)
-                      {
-                        a += N * fields.acceleration[I];
-                        rate += N * fields.rate[I];
-                      });
-                const Tensor<1, dim> v0 = xpic ? v_start : particles.velocity[p];
-                particles.velocity[p] =
-                    newmark.corrected_velocity(v0, particles.acceleration[p], a, dt);
-                particles.acceleration[p]      = a;
-                const Tensor<1, dim> increment = dt * rate;
-                particles.position[p] += increment;
-                if (prescribed_body.empty() || !prescribed_body[particles.body_id[p]])
-                  pw += particles.mass[p] * (body_force * increment);
-                v2                = std::max(v2, particles.velocity[p].norm_square());
-                const double move = increment.norm();
-                // Leaving the grid is caught here, where the guard's flag rides on the
-                // step's one reduction, not at the next step's search of cells.
-                if (!(move < max_move) ||
-                    !std::isfinite(particles.velocity[p].norm_square()) ||
-                    !(particles.density[p] > 0) || !grid.inside(particles.position[p]))
-                  keep_lowest(first_bad, p);
-              }
-            });
-        double seen = fastest.load();
-        while (v2 > seen && !fastest.compare_exchange_weak(seen, v2))
+  const auto update = [&](const std::size_t b, const std::size_t e)
+  {
+    double pw = 0, v2 = 0;
+    with_rows(
+        grid, conn,
+        [&](const auto &rows)
         {
-        }
-        return pw;
-      });
+          for (std::size_t p = b; p < e; ++p)
+          {
+            // Ghosts (copies of another rank's particles) are not updated: the
+            // exchange that ends the step writes their owners' values over them, and
+            // nothing reads them before it.
+            if (particles.ghost[p])
+              continue;
+            // The interpolations in one walk over the row, each summed in its order.
+            // The rates are those the strains were taken from (nothing changes them
+            // after the predictor): interpolated here, not stored per particle.
+            Tensor<1, dim> a, v_start, rate;
+            // Two walks, one chosen per particle: a test of xpic inside the walk
+            // made this pass twice as slow (2D B-splines).
+            if (xpic)
+              rows.visit(p,
+                         [&](const unsigned int I, const double N, const Tensor<1, dim> &)
+                         {
+                           a += N * fields.acceleration[I];
+                           v_start += N * start_velocity[I];
+                           rate += N * fields.rate[I];
+                         });
+            else
+              rows.visit(p,
+                         [&](const unsigned int I, const double N, const Tensor<1, dim> &)
+                         {
+                           a += N * fields.acceleration[I];
+                           rate += N * fields.rate[I];
+                         });
+            const Tensor<1, dim> v0 = xpic ? v_start : particles.velocity[p];
+            particles.velocity[p] =
+                newmark.corrected_velocity(v0, particles.acceleration[p], a, dt);
+            particles.acceleration[p]      = a;
+            const Tensor<1, dim> increment = dt * rate;
+            particles.position[p] += increment;
+            if (prescribed_body.empty() || !prescribed_body[particles.body_id[p]])
+              pw += particles.mass[p] * (body_force * increment);
+            v2                = std::max(v2, particles.velocity[p].norm_square());
+            const double move = increment.norm();
+            // Leaving the grid is caught here, where the guard's flag rides on the
+            // step's one reduction, not at the next step's search of cells.
+            if (!(move < max_move) ||
+                !std::isfinite(particles.velocity[p].norm_square()) ||
+                !(particles.density[p] > 0) || !grid.inside(particles.position[p]))
+              keep_lowest(first_bad, p);
+          }
+        });
+    double seen = fastest.load();
+    while (v2 > seen && !fastest.compare_exchange_weak(seen, v2))
+    {
+    }
+    return pw;
+  };
+  // Without a body force every term of the work is zero: the particles need not go in
+  // the blocks of a sum that is independent of the threads, which are few and uneven
+  // for a few thousand particles.
+  double body_work = 0;
+  if (body_force.norm_square() == 0)
+    parallel::for_range(n, update);
+  else
+    body_work = parallel::deterministic_sum<double>(n, update);
   bad       = first_bad.load();
   max_speed = std::sqrt(fastest.load());
   return body_work;

@@ -8,6 +8,7 @@
 #include <lme_mpm/output/force_means.h>
 #include <lme_mpm/output/moving_mean.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -113,6 +114,31 @@ TEST(BodyFields, SharedNodesGetAFieldPerBodyAndPairsFollowTheirBody)
       const unsigned int I = layout.node_of(F);
       EXPECT_EQ(fields.field_of_body(I, s.particles.body_id[p]), F);
     }
+}
+
+// The marks are kept while no particle changes cell, and follow one that does.
+TEST(BodyFields, MarksStandWhileNoParticleChangesCellAndFollowOneThatDoes)
+{
+  TwoBlocks s("nodal");
+  const BodyFields<2> &fields                 = s.contact->body_fields();
+  FieldLayout &layout                         = s.transfer->nodes().layout;
+  const std::vector<unsigned int> shared_then = fields.shared_nodes();
+  ASSERT_FALSE(shared_then.empty());
+  s.contact->assign_fields(s.particles, layout);
+  EXPECT_EQ(fields.shared_nodes(), shared_then);
+  // A particle of body 1 (the block at x >= 0.5) moved to the cell left of body 0's
+  // block: the nodes at x = 0.1 and 0.2 near it now hold both bodies.
+  std::size_t moved = 0;
+  while (s.particles.body_id[moved] != 1)
+    ++moved;
+  s.particles.position[moved] = Point<2>(0.05, 0.325);
+  ASSERT_EQ(s.transfer->locate_and_sort(), s.particles.size());
+  s.contact->assign_fields(s.particles, layout);
+  const unsigned int node = s.grid.node_index({{1, 3}}); // (0.1, 0.3)
+  const auto &shared_now  = fields.shared_nodes();
+  EXPECT_EQ(std::count(shared_then.begin(), shared_then.end(), node), 0);
+  EXPECT_EQ(std::count(shared_now.begin(), shared_now.end(), node), 1);
+  EXPECT_NE(fields.field_of_body(node, 1), FieldLayout::invalid);
 }
 
 TEST(ContactPairs, NodalExchangeKeepsMomentumAndStopsEveryApproach)

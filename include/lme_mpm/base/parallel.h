@@ -43,12 +43,17 @@ T deterministic_sum(const std::size_t n, const F &f, const T zero = T())
   constexpr std::size_t block = 4096;
   const std::size_t n_blocks  = (n + block - 1) / block;
   std::vector<T> partial(n_blocks, zero);
-  for_range(n_blocks,
-            [&](const std::size_t b0, const std::size_t b1)
-            {
-              for (std::size_t b = b0; b < b1; ++b)
-                partial[b] = f(b * block, std::min(n, (b + 1) * block));
-            });
+  // One task per block: a block is already worth scheduling, and for_range's grain
+  // (in particles) would run a few blocks, i.e. every scene's particles, on one thread.
+  const auto sum_blocks = [&](const std::size_t b0, const std::size_t b1)
+  {
+    for (std::size_t b = b0; b < b1; ++b)
+      partial[b] = f(b * block, std::min(n, (b + 1) * block));
+  };
+  if (n_blocks <= 1)
+    sum_blocks(0, n_blocks);
+  else
+    dealii::parallel::apply_to_subranges(std::size_t(0), n_blocks, sum_blocks, 1);
   T total = zero;
   for (const auto &p : partial)
     total += p;

@@ -109,6 +109,10 @@ private:
   const FieldLayout *layout = nullptr;
   std::vector<std::uint32_t> node_bodies;
   std::vector<unsigned int> marked, shared;
+  // The particles' cells and bodies the marks were made from (mark_reached_nodes()).
+  std::vector<std::uint32_t> marked_cells;
+  std::vector<std::uint16_t> marked_bodies;
+  bool marks_valid = false;
   std::vector<PrescribedField> prescribed_fields;
   std::vector<std::uint8_t> touches;
 };

@@ -4,6 +4,8 @@
 #include <deal.II/base/parallel.h>
 #include <deal.II/base/tensor.h>
 
+#include <tbb/parallel_pipeline.h>
+
 #include <lme_mpm/base/rank_reductions.h>
 #include <lme_mpm/grid/background_grid.h>
 #include <lme_mpm/grid/nodal_fields.h>
@@ -197,6 +199,19 @@ public:
   template <class F>
   void scatter_chunks(const F &f) const
   {
+    for_slabs(
+        [&](const std::size_t b, const std::size_t e)
+        {
+          for (std::size_t c = b; c < e; c += chunk)
+            f(c, std::min(e, c + chunk));
+        });
+  }
+
+  /// The slabs, as f(begin, end) of their particles: those of one colour concurrently,
+  /// the two colours in turn.
+  template <class F>
+  void for_slabs(const F &f) const
+  {
     // Slabs of slab_below + slab_above cell layers: every scattering particle's
     // support lies within slab_below layers below and slab_above above its own, so
     // slabs of one colour touch disjoint nodes.
@@ -206,12 +221,7 @@ public:
     const unsigned int w        = std::max(1u, slab_below + slab_above);
     const unsigned int n_slabs  = (n_layers + w - 1) / w;
     auto run_slab               = [&](const unsigned int s)
-    {
-      const std::size_t b = offsets[s * w * cpl];
-      const std::size_t e = offsets[std::min((s + 1) * w, n_layers) * cpl];
-      for (std::size_t c = b; c < e; c += chunk)
-        f(c, std::min(e, c + chunk));
-    };
+    { f(offsets[s * w * cpl], offsets[std::min((s + 1) * w, n_layers) * cpl]); };
     for (unsigned int colour = 0; colour < 2; ++colour)
     {
       const unsigned int n_this = (n_slabs + 1 - colour) / 2;
@@ -228,6 +238,69 @@ public:
             },
             1);
     }
+  }
+
+  /**
+   * scatter_chunks() with each chunk's work in two parts: @p prepare(begin, end),
+   * which writes to its own particles only and returns whether the chunk may scatter,
+   * and then @p scatter(begin, end) if it may. The scatters keep the order of
+   * scatter_chunks(), so the sums their nodes receive are the same to the bit; the
+   * preparations of a slab's chunks may run on any thread, ahead of its scatter.
+   * A slab costlier than the others (particles whose shape functions take longer)
+   * then no longer holds the other threads waiting at the end of its colour.
+   */
+  template <class Prepare, class Scatter>
+  void scatter_chunks(const Prepare &prepare, const Scatter &scatter) const
+  {
+    if (n_threads == 1)
+    {
+      scatter_chunks(
+          [&](const std::size_t b, const std::size_t e)
+          {
+            if (prepare(b, e))
+              scatter(b, e);
+          });
+      return;
+    }
+    for_slabs(
+        [&](const std::size_t b, const std::size_t e)
+        {
+          // The chunks of the slab through a pipeline: prepared on any thread (at most
+          // two per thread ahead), scattered one at a time in the slab's order.
+          struct Chunk
+          {
+            std::size_t begin, end;
+            bool scatters;
+          };
+          std::size_t next = b;
+          tbb::parallel_pipeline(
+              2 * n_threads,
+              tbb::make_filter<void, Chunk>(
+                  tbb::filter_mode::serial_in_order,
+                  [&](tbb::flow_control &control)
+                  {
+                    if (next >= e)
+                    {
+                      control.stop();
+                      return Chunk{e, e, false};
+                    }
+                    const Chunk c{next, std::min(e, next + chunk), false};
+                    next = c.end;
+                    return c;
+                  }) &
+                  tbb::make_filter<Chunk, Chunk>(tbb::filter_mode::parallel,
+                                                 [&](Chunk c)
+                                                 {
+                                                   c.scatters = prepare(c.begin, c.end);
+                                                   return c;
+                                                 }) &
+                  tbb::make_filter<Chunk, void>(tbb::filter_mode::serial_in_order,
+                                                [&](const Chunk &c)
+                                                {
+                                                  if (c.scatters)
+                                                    scatter(c.begin, c.end);
+                                                }));
+        });
   }
 
   template <class Archive>
