@@ -57,7 +57,7 @@ public:
       std::array<unsigned int, dim> cell;
       SeparableRow<dim, 4> r;
       auto &w = r.w, &dw = r.dw;
-      AssertThrow(grid.locate(x, cell),
+      AssertThrow(grid.locate(x, particles.cell[p], cell),
                   ExcShapeFunctionFailure("bspline", particles.id[p], point_to_string(x),
                                           "the particle is outside the grid"));
       for (unsigned int d = 0; d < dim; ++d)

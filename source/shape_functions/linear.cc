@@ -45,7 +45,7 @@ public:
     {
       const Point<dim> &x = particles.position[p];
       std::array<unsigned int, dim> cell;
-      AssertThrow(grid.locate(x, cell),
+      AssertThrow(grid.locate(x, particles.cell[p], cell),
                   ExcShapeFunctionFailure("linear", particles.id[p], point_to_string(x),
                                           "the particle is outside the grid"));
       if (conn.hat_rows_from_cells)

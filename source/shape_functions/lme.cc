@@ -134,11 +134,13 @@ public:
       const auto fail_at_p  = [&](const auto &...what) { fail(particles, p, what...); };
       const Point<dim> &x   = particles.position[p];
       double h;
+      // The cell locate_and_sort() found this step: no second search.
+      const unsigned int cell = particles.cell[p];
       const unsigned int n =
-          graded
-              ? support.template set_up<true>(x, &conn.nodes[row], scratch, h, fail_at_p)
-              : support.template set_up<false>(x, &conn.nodes[row], scratch, h,
-                                               fail_at_p);
+          graded ? support.template set_up<true>(x, cell, &conn.nodes[row], scratch, h,
+                                                 fail_at_p)
+                 : support.template set_up<false>(x, cell, &conn.nodes[row], scratch, h,
+                                                  fail_at_p);
       const Solution solution =
           solve(particles, p, n, warm_start(particles, p, h), &conn.N[row], scratch);
       gradients(particles, p, n, h, scratch, &conn.N[row], solution, &conn.grad_N[row]);

@@ -138,16 +138,18 @@ public:
 
   /// Set-up of a point x: h, the smallest spacing of its cell (the unit of the scaled
   /// coordinates), and the n nodes whose support holds x (returns n) into @p nodes,
-  /// their y_I, a_I and w_I into @p scratch. On a uniform grid (Graded false) the
+  /// their y_I, a_I and w_I into @p scratch; @p located is the cell x was last found in
+  /// (BackgroundGrid::locate() with a cell). On a uniform grid (Graded false) the
   /// supports all have radius R = radius_over_h h; on a graded one node I reaches
   /// R_I = radius_over_h h_I. Calls fail(what...) (which must throw) if x is outside
   /// the grid or not strictly inside the nodes' hull.
   template <bool Graded, class Fail>
-  unsigned int set_up(const Point<dim> &x, unsigned int *nodes, Offsets &scratch,
-                      double &h, const Fail &fail) const
+  unsigned int set_up(const Point<dim> &x, const unsigned int located,
+                      unsigned int *nodes, Offsets &scratch, double &h,
+                      const Fail &fail) const
   {
     std::array<unsigned int, dim> first, count, cell;
-    if (!grid.locate(x, cell))
+    if (!grid.locate(x, located, cell))
       fail("the particle is outside the grid");
     h = std::numeric_limits<double>::max();
     for (unsigned int d = 0; d < dim; ++d)

@@ -102,3 +102,62 @@ TEST(BackgroundGrid, GradedLocateMatchesBinarySearchAtEveryFace)
     EXPECT_EQ(i, reference(x)) << "x = " << x;
   }
 }
+
+// locate() from a cell found before: the answer of the search whatever the cell given
+// (the right one, a neighbour, any other, one out of range), at every face and corner
+// of a graded and a uniform grid and at random points, and false outside the grid.
+TEST(BackgroundGrid, LocateFromACellGivesTheSearchsCell)
+{
+  for (const bool graded : {true, false})
+  {
+    BackgroundGrid<2> grid;
+    const std::vector<double> steps =
+        graded ? std::vector<double>{0.3, 0.07, 0.011, 0.011, 0.5, 0.013, 0.2, 0.0999}
+               : std::vector<double>(8, 0.1);
+    grid.reinit(Point<2>(-0.37, 0.1), {{steps, std::vector<double>(3, 0.25)}});
+    ASSERT_EQ(grid.is_uniform(0), !graded);
+    std::vector<std::vector<double>> xs(2);
+    std::mt19937 rng(11);
+    for (unsigned int d = 0; d < 2; ++d)
+    {
+      const auto &c = grid.coordinates(d);
+      for (const double ci : c)
+        for (const double x : {std::nextafter(ci, -1e9), ci, std::nextafter(ci, 1e9)})
+          xs[d].push_back(x);
+      std::uniform_real_distribution<double> u(c.front(), c.back());
+      for (int i = 0; i < 60; ++i)
+        xs[d].push_back(u(rng));
+    }
+    std::uniform_int_distribution<unsigned int> any_cell(0, grid.n_cells() + 3);
+    std::size_t hits = 0;
+    for (const double x : xs[0])
+      for (const double y : xs[1])
+      {
+        const Point<2> p(x, y);
+        std::array<unsigned int, 2> expected, found;
+        const bool inside               = grid.locate(p, expected);
+        std::vector<unsigned int> hints = {any_cell(rng), grid.n_cells(), ~0u};
+        if (inside)
+        {
+          const unsigned int own = grid.cell_index(expected);
+          hints.push_back(own);
+          // The neighbours along x: the cells a point on a face might be put in.
+          if (expected[0] > 0)
+            hints.push_back(own - 1);
+          if (expected[0] + 2 < grid.n_nodes_in(0))
+            hints.push_back(own + 1);
+        }
+        for (const unsigned int hint : hints)
+        {
+          found = {{777, 777}};
+          ASSERT_EQ(grid.locate(p, hint, found), inside) << p << " from cell " << hint;
+          if (inside)
+          {
+            ASSERT_EQ(found, expected) << p << " from cell " << hint;
+            hits += hint == grid.cell_index(expected);
+          }
+        }
+      }
+    EXPECT_GT(hits, 1000u);
+  }
+}

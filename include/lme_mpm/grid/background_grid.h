@@ -126,6 +126,35 @@ public:
         return false;
     return true;
   }
+  /**
+   * locate() for a point whose cell was found before (@p cell, a cell_index(), as
+   * GridTransfer::locate_and_sort() keeps it per particle): the cell locate() gives
+   * is the only one with c_i <= x < c_{i+1} along each direction (c_i <= x <= c_{i+1}
+   * in the last cell), so where @p cell passes that test it is the answer, without
+   * the search; where it does not (the point has moved, or @p cell is stale or out of
+   * range), locate() finds it.
+   */
+  bool locate(const Point<dim> &x, const unsigned int cell,
+              std::array<unsigned int, dim> &ijk) const
+  {
+    if (cell < n_cells_total)
+    {
+      unsigned int rest = cell;
+      bool holds        = true;
+      for (unsigned int d = dim; d-- > 0;)
+      {
+        const unsigned int i = d == 0 ? rest : rest / cell_strides[d];
+        rest -= i * cell_strides[d];
+        ijk[d]          = i;
+        const double *c = coords[d].data() + i;
+        holds &= (x[d] >= c[0]) &
+                 ((x[d] < c[1]) | ((i + 2 == coords[d].size()) & (x[d] <= c[1])));
+      }
+      if (holds)
+        return true;
+    }
+    return locate(x, ijk);
+  }
   bool inside(const Point<dim> &x) const
   {
     for (unsigned int d = 0; d < dim; ++d)

@@ -218,7 +218,10 @@ public:
   /**
    * Fills rows [begin, end) of @p conn for the particles' current positions. Called
    * concurrently on disjoint ranges. Throws ExcShapeFunctionFailure on a particle
-   * outside the region where the functions are defined or a failed solve.
+   * outside the region where the functions are defined or a failed solve. In a step,
+   * `particles.cell` holds the cells GridTransfer::locate_and_sort() has just found:
+   * BackgroundGrid::locate(x, particles.cell[p], ijk) takes it where it still holds x
+   * and searches otherwise (as when compute() is called on a store never located).
    */
   virtual void compute(ParticleStore<dim> &particles, std::size_t begin, std::size_t end,
                        Connectivity<dim> &conn) const = 0;
