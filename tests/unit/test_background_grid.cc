@@ -104,8 +104,9 @@ TEST(BackgroundGrid, GradedLocateMatchesBinarySearchAtEveryFace)
 }
 
 // locate() from a cell found before: the answer of the search whatever the cell given
-// (the right one, a neighbour, any other, one out of range), at every face and corner
-// of a graded and a uniform grid and at random points, and false outside the grid.
+// (the right one, a neighbour along x or y, any other, one out of range), at every face
+// and corner of a graded and a uniform grid and at random points, and false outside the
+// grid.
 TEST(BackgroundGrid, LocateFromACellGivesTheSearchsCell)
 {
   for (const bool graded : {true, false})
@@ -141,11 +142,15 @@ TEST(BackgroundGrid, LocateFromACellGivesTheSearchsCell)
         {
           const unsigned int own = grid.cell_index(expected);
           hints.push_back(own);
-          // The neighbours along x: the cells a point on a face might be put in.
-          if (expected[0] > 0)
-            hints.push_back(own - 1);
-          if (expected[0] + 2 < grid.n_nodes_in(0))
-            hints.push_back(own + 1);
+          // The neighbours along x and y: the cells a point on a face might be put in.
+          for (unsigned int d = 0; d < 2; ++d)
+          {
+            const unsigned int stride = d == 0 ? 1 : grid.n_cells_in(0);
+            if (expected[d] > 0)
+              hints.push_back(own - stride);
+            if (expected[d] + 2 < grid.n_nodes_in(d))
+              hints.push_back(own + stride);
+          }
         }
         for (const unsigned int hint : hints)
         {
